@@ -1,0 +1,94 @@
+"""Exception types of linkcli.
+
+One base class, :class:`LinkcliError`; every error carries structured fields
+and builds its message in ``__str__``.  The CLI catches the base class once and
+maps it to an exit code: 2 for invalid input, 3 for a mechanism that cannot be
+solved.
+"""
+from __future__ import annotations
+
+
+class LinkcliError(Exception):
+    """Base class of every error linkcli raises on purpose."""
+
+    exit_code = 1
+
+    def __init__(self, detail: str, *, file: str | None = None, key: str | None = None,
+                 line: int | None = None, hint: str | None = None):
+        super().__init__(detail)
+        self.detail = detail
+        self.file = file
+        self.key = key
+        self.line = line
+        self.hint = hint
+
+    def located(self, file: str | None = None) -> "LinkcliError":
+        """Return self with ``file`` filled in when it was not known yet."""
+        if self.file is None and file is not None:
+            self.file = file
+        return self
+
+    def where(self) -> str:
+        parts = []
+        if self.file:
+            parts.append(self.file if self.line is None else f"{self.file}:{self.line}")
+        if self.key:
+            parts.append(f"key '{self.key}'")
+        return ", ".join(parts)
+
+    def __str__(self) -> str:
+        where = self.where()
+        msg = f"{where}: {self.detail}" if where else self.detail
+        if self.hint:
+            msg += f" ({self.hint})"
+        return msg
+
+
+class InputError(LinkcliError):
+    """The file or the command line is invalid: syntax, schema, references."""
+
+    exit_code = 2
+
+
+class ExpressionError(InputError):
+    """A parameter expression is malformed, unsafe or out of bounds."""
+
+
+class SolveError(LinkcliError):
+    """A valid mechanism that cannot be solved as asked."""
+
+    exit_code = 3
+
+
+class MobilityError(SolveError):
+    """Grübler's count is not 1."""
+
+
+class StructureError(SolveError):
+    """The structure does not decompose into the supported Assur groups."""
+
+
+class AssemblyError(SolveError):
+    """A group cannot be assembled: its links fall short (or overlap)."""
+
+    def __init__(self, detail: str, *, group: str = "", q=None, shortfall: float = 0.0, **kw):
+        super().__init__(detail, **kw)
+        self.group = group
+        self.q = q
+        self.shortfall = shortfall
+
+
+class SingularError(SolveError):
+    """Velocities are undefined: a toggle or dead point (singular Jacobian)."""
+
+    def __init__(self, detail: str, *, group: str = "", q=None, measure: float = 0.0, **kw):
+        super().__init__(detail, **kw)
+        self.group = group
+        self.q = q
+        self.measure = measure
+
+
+class CheckFailed(LinkcliError):
+    """Some answer-key values disagree with the solution (exit 1)."""
+
+    exit_code = 1

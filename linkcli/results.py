@@ -1,0 +1,160 @@
+"""Evaluate a mechanism's report: every named quantity in its display unit.
+
+Angles of a vector ``z = P_b - P_a`` and their rates follow from
+``w = z'/z``: ``phi' = Im w``, ``phi'' = Im(z''/z - w^2)``; lengths:
+``r' = r Re w``, ``r'' = r (Re(z''/z - w^2) + (Re w)^2)``.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .parsing import split_rate
+from .statics import unknown_load
+from .units import ANGLE, ANGULAR_RATE, FORCE, LENGTH, TORQUE
+
+TWO_PI = 2 * math.pi
+
+
+@dataclass
+class Result:
+    """Solved values of a report, in display units (floats or arrays)."""
+
+    mechanism: object
+    values: dict = field(default_factory=dict)
+    units: dict = field(default_factory=dict)
+    points: dict = field(default_factory=dict)       # name -> (x, y) in length units
+    kinematics: object = None
+
+    @property
+    def k(self):
+        return self.mechanism.k
+
+
+def needed_orders(mech, names):
+    orders = {0}
+    for name in names:
+        base, order = split_rate(name)
+        if base in mech.quantities and mech.quantities[base].kind != "load":
+            orders.add(order)
+        else:
+            orders.add(1)   # loads need velocities (virtual work)
+    return max(orders)
+
+
+def report_names(mech):
+    names = []
+    for section in ("position", "velocity", "acceleration", "statics"):
+        names += mech.report.get(section, [])
+    return names
+
+
+def evaluate(mech, q=None, qdot=None, qddot=None, names=None) -> Result:
+    """Solve ``mech`` at driver value(s) ``q`` (display units) and evaluate ``names``."""
+    solver = mech.solver()
+    names = list(names) if names is not None else report_names(mech)
+    base = "angle" if mech.driver.kind == "angle" else "length"
+    units = mech.units
+    q_si = mech.driver.value if q is None else np.asarray(q, float) * units.display(base, 0)[1]
+    qd_si = mech.driver.rate if qdot is None else np.asarray(qdot, float) * units.display(base, 1)[1]
+    qdd_si = mech.driver.accel if qddot is None else \
+        np.asarray(qddot, float) * units.display(base, 2)[1]
+    order = needed_orders(mech, names)
+    kin = solver.positions(q_si)
+    solver.check(kin, velocities=False)
+    if order >= 1:
+        solver.velocities(kin, qd_si)
+        solver.check(kin, velocities=True)
+    if order >= 2:
+        solver.accelerations(kin, qdd_si)
+    result = Result(mech, kinematics=kin)
+    loads = _loads(mech, solver, kin, names)
+    for name in names:
+        value, unit = _value(mech, name, kin, loads)
+        result.values[name] = value
+        result.units[name] = unit
+    l_unit, l_factor = units.display("length", 0)
+    for p in mech.report.get("points", []):
+        z = kin.pos[p]
+        result.points[p] = (np.real(z) / l_factor + 0 * kin.q, np.imag(z) / l_factor + 0 * kin.q)
+        result.units[p] = l_unit
+    return result
+
+
+def _loads(mech, solver, kin, names):
+    """SI values of every load, solving the unknown one when a load is asked for."""
+    wanted = any(mech.quantities.get(split_rate(n)[0]) is not None
+                 and mech.quantities[split_rate(n)[0]].kind == "load" for n in names)
+    if not wanted:
+        return {}
+    values = {n: load.value for n, load in mech.loads.items()}
+    unit_kin = solver.velocities(type(kin)(kin.q, pos=kin.pos), np.ones_like(kin.q))
+    unknown = mech.unknown_load()
+    values[unknown.name] = unknown_load(mech, kin.pos, unit_kin.vel)
+    return values
+
+
+def _value(mech, name, kin, loads):
+    base_name, order = split_rate(name)
+    quantity = mech.quantities[base_name]
+    units = mech.units
+    if quantity.kind == "load":
+        load = mech.loads[quantity.a]
+        value = loads[load.name]
+        if quantity.component:
+            value = value * (load.direction.real if quantity.component == "x"
+                             else load.direction.imag)
+        kind = _load_unit_kind(mech, load)
+        unit = quantity.unit or units.names[kind]
+        table = FORCE if kind == "force" else TORQUE
+        return value / table[unit], unit
+    if quantity.kind == "q":
+        value = [kin.q, kin.qd, kin.qdd][order]
+        base = "angle" if mech.driver.kind == "angle" else "length"
+        if order == 0 and base == "angle":
+            value = np.mod(value, TWO_PI)
+    elif quantity.kind in ("x", "y"):
+        z = [kin.pos, kin.vel, kin.acc][order][quantity.a]
+        value = np.real(z) if quantity.kind == "x" else np.imag(z)
+        base = "length"
+    else:
+        value, base = _vector(quantity, kin, order)
+    unit, factor = units.display(base, order)
+    if quantity.unit:
+        unit, factor = _override(quantity.unit, base, order)
+    return value / factor + 0 * kin.q, unit
+
+
+def _vector(quantity, kin, order):
+    z = kin.pos[quantity.b] - kin.pos[quantity.a]
+    base = "angle" if quantity.kind == "angle" else "length"
+    if order == 0:
+        value = np.mod(np.angle(z), TWO_PI) if base == "angle" else np.abs(z)
+        if base == "angle":
+            value = np.where(value >= TWO_PI, 0.0, value)
+        return value, base
+    w = (kin.vel.get(quantity.b, 0.0) - kin.vel.get(quantity.a, 0.0)) / z
+    if order == 1:
+        return (w.imag if base == "angle" else np.abs(z) * w.real), base
+    dw = (kin.acc.get(quantity.b, 0.0) - kin.acc.get(quantity.a, 0.0)) / z - w * w
+    if base == "angle":
+        return dw.imag, base
+    return np.abs(z) * (dw.real + w.real ** 2), base
+
+
+def _override(unit, base, order):
+    if base == "angle":
+        table = ANGLE if order == 0 else ANGULAR_RATE
+        name = unit if order < 2 else unit.replace("/s^2", "/s")
+        factor = table[name] if order < 2 else ANGLE[name.split("/")[0]]
+        return unit, factor
+    name = unit.split("/")[0]
+    return unit, LENGTH[name]
+
+
+def _load_unit_kind(mech, load):
+    if load.kind == "torque" or load.kind == "driver" and mech.driver.kind == "angle":
+        return "torque"
+    return "force"

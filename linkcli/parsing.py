@@ -622,7 +622,7 @@ class Parser:
 
     def key_entry(self, name, printed, path, quantities, pool, wrong) -> KeyEntry:
         line = self.doc.line(path)
-        if name in pool:
+        if name in pool and (isinstance(printed, list) or name not in quantities):
             if not isinstance(printed, list) or len(printed) != 2:
                 raise self.error(path, f"a point's key is [x, y], got {printed!r}")
             texts = [self.doc.raw.get(path + (i,), str(v)) for i, v in enumerate(printed)]

@@ -1,0 +1,41 @@
+# linkcli: set-up and everyday commands.  Every target installs what it needs
+# into a local virtual environment, so they work on a fresh machine.
+PYTHON ?= python3
+VENV   ?= .venv
+BIN     = $(VENV)/bin
+EXAMPLE ?= mechanisms/padova-2020-02.yaml
+
+.PHONY: run test check bench install clean
+
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+
+$(VENV)/.installed: pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install --quiet -e '.[plot]'
+	touch $@
+
+$(VENV)/.installed-test: pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install --quiet -e '.[test]'
+	touch $@
+
+install: $(VENV)/.installed
+
+## run: install and solve a shipped example
+run: $(VENV)/.installed
+	$(BIN)/linkcli solve $(EXAMPLE)
+
+## test: install with test extras, run the test suite and check every answer key
+test: $(VENV)/.installed-test
+	$(BIN)/python -m pytest
+	$(BIN)/linkcli check mechanisms/
+
+check: $(VENV)/.installed
+	$(BIN)/linkcli check mechanisms/
+
+## bench: speed against accuracy (table and chart in benchmarks/out/)
+bench: $(VENV)/.installed-test
+	$(BIN)/python benchmarks/speed_accuracy.py
+
+clean:
+	rm -rf $(VENV) build *.egg-info .pytest_cache benchmarks/out

@@ -14,7 +14,7 @@ from . import expressions
 from .errors import ExpressionError, InputError
 from .model import (FRAME, Actuator, AnswerKey, Body, Driver, Guide, KeyEntry, Load,
                     Mechanism, Quantity)
-from .units import Units
+from .units import ANGLE, FORCE, LENGTH, TORQUE, Units
 from .yamlsource import Document, path_text
 
 TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points", "links",
@@ -200,8 +200,7 @@ class Parser:
         return fixed
 
     def moving(self, data, units, fixed) -> dict:
-        points = self.mapping(self.get(data, (), "points", required=False, default={}) or {},
-                              ("points",))
+        points = self.mapping(self.get(data, (), "points"), ("points",))
         moving = {}
         for name, value in points.items():
             path = ("points", name)
@@ -538,8 +537,14 @@ class Parser:
             raise self.error(path, "give exactly one of angle, length, x, y, load")
         kind = kinds[0]
         unit = value.get("unit")
-        if unit is not None and not isinstance(unit, str):
-            raise self.error(path + ("unit",), "unit is a name such as rad or deg")
+        table = {"angle": ANGLE, "load": None}.get(kind, LENGTH)
+        if table is None and unit is not None:
+            table = FORCE if loads.get(value.get("load"), None) is None or \
+                loads[value["load"]].kind in ("force", "axial") else TORQUE
+        if unit is not None and unit not in (table or {}) and not (
+                kind == "load" and unit in FORCE.keys() | TORQUE.keys()):
+            raise self.error(path + ("unit",), f"unknown unit {unit!r} for a {kind} quantity",
+                             hint="use one of " + ", ".join(table or FORCE))
         if kind in ("angle", "length"):
             a, b = self.pair(value[kind], path + (kind,), pool)
             return Quantity(name, kind, a, b, unit=unit)

@@ -13,7 +13,7 @@ import numpy as np
 
 from .parsing import split_rate
 from .statics import unknown_load
-from .units import ANGLE, ANGULAR_RATE, FORCE, LENGTH, TORQUE
+from .units import ANGLE, FORCE, LENGTH, TORQUE
 
 TWO_PI = 2 * math.pi
 
@@ -145,13 +145,9 @@ def _vector(quantity, kin, order):
 
 
 def _override(unit, base, order):
-    if base == "angle":
-        table = ANGLE if order == 0 else ANGULAR_RATE
-        name = unit if order < 2 else unit.replace("/s^2", "/s")
-        factor = table[name] if order < 2 else ANGLE[name.split("/")[0]]
-        return unit, factor
-    name = unit.split("/")[0]
-    return unit, LENGTH[name]
+    """Display unit and SI factor for a quantity whose base unit is ``unit``."""
+    factor = ANGLE[unit] if base == "angle" else LENGTH[unit]
+    return unit + ["", "/s", "/s^2"][order], factor
 
 
 def _load_unit_kind(mech, load):

@@ -40,7 +40,9 @@ def run(doc, ks: list[int]):
         mech = parse(doc, k)
         result = mech.solve()
         if not columns:
-            columns = report_names(mech) + [f"{c}{p}" for p in result.points for c in "xy"]
+            names = report_names(mech)
+            columns = names + [f"{c}{p}" for p in result.points for c in "xy"
+                               if f"{c}{p}" not in names]
             units = dict(result.units)
             for p in result.points:
                 units["x" + p] = units["y" + p] = result.units[p]

@@ -124,7 +124,7 @@ def batch(file, ks, form, decimals, output):
         from tabulate import tabulate
         header = ["k"] + [f"{c}\n[{units[c]}]" for c in columns]
         body = [[r[0]] + [fmt(v, decimals) for v in r[1:]] for r in rows]
-        text = tabulate(body, headers=header, disablenumparse=True, stralign="right")
+        text = tabulate(body, headers=header, disable_numparse=True, stralign="right")
     _emit(text, output)
 
 

@@ -64,7 +64,7 @@ def table(result, decimals: int = 1) -> str:
             for name in result.values]
     rows += [(p, f"({fmt(np.ravel(x)[0], decimals)}, {fmt(np.ravel(y)[0], decimals)})",
               result.units[p]) for p, (x, y) in result.points.items()]
-    return tabulate(rows, headers=["quantity", "value", "unit"], disablenumparse=True)
+    return tabulate(rows, headers=["quantity", "value", "unit"], disable_numparse=True)
 
 
 def as_dict(result) -> dict:

@@ -116,7 +116,7 @@ def _value(mech, name, kin, loads):
         if order == 0 and base == "angle":
             value = np.mod(value, TWO_PI)
     elif quantity.kind in ("x", "y"):
-        z = [kin.pos, kin.vel, kin.acc][order][quantity.a]
+        z = [kin.pos, kin.vel, kin.acc][order].get(quantity.a, 0j)
         value = np.real(z) if quantity.kind == "x" else np.imag(z)
         base = "length"
     else:

@@ -32,14 +32,16 @@ def parse_k(text: str) -> list[int]:
 
 
 def run(doc, ks: list[int]):
-    """Return (columns, units, rows): a row per k with every report value."""
+    """Return (columns, units, rows, decimals): a row per k with every report value."""
     rows = []
+    decimals = 1
     columns: list[str] = []
     units: dict = {}
     for k in ks:
         mech = parse(doc, k)
         result = mech.solve()
         if not columns:
+            decimals = mech.report.get("decimals", 1)
             names = report_names(mech)
             columns = names + [f"{c}{p}" for p in result.points for c in "xy"
                                if f"{c}{p}" not in names]
@@ -50,4 +52,4 @@ def run(doc, ks: list[int]):
         for p, (x, y) in result.points.items():
             values["x" + p], values["y" + p] = x, y
         rows.append([k] + [float(np.asarray(values[c])) for c in columns])
-    return columns, units, rows
+    return columns, units, rows, decimals

@@ -82,26 +82,34 @@ def check_file(path: str) -> FileReport:
 def _check_key(mech, key) -> list[Outcome]:
     names = []
     for entry in key.entries:
-        if isinstance(entry.value, tuple):
+        if _is_point(mech, entry):
             names += ["x" + entry.name, "y" + entry.name]
         else:
             names.append(entry.name)
     result = mech.solve(names=names)
     out = []
     for entry in key.entries:
-        if isinstance(entry.value, tuple):
+        shown = max(entry.decimals, 1) if entry.value is None else entry.decimals
+        if _is_point(mech, entry):
             computed = [float(result.values["x" + entry.name]), float(result.values["y" + entry.name])]
-            ok = all(agrees(c, p, entry.decimals, None) for c, p in zip(computed, entry.value))
-            text = "(" + ", ".join(f"{c:.{entry.decimals}f}" for c in computed) + ")"
+            ok = entry.value is not None and all(
+                agrees(c, p, entry.decimals, None) for c, p in zip(computed, entry.value))
+            text = "(" + ", ".join(f"{c:.{shown}f}" for c in computed) + ")"
         else:
             computed = float(np.asarray(result.values[entry.name]))
             period = _period(mech, entry.name, result.units[entry.name])
-            ok = agrees(computed, entry.value, entry.decimals, period)
-            text = f"{computed:.{entry.decimals}f}"
+            ok = entry.value is not None and agrees(computed, entry.value, entry.decimals, period)
+            text = f"{computed:.{shown}f}"
         status = "known" if entry.wrong else ("pass" if ok else "fail")
         out.append(Outcome(mech.file, mech.k, entry.name, entry.printed, text, status,
                            entry.wrong or ""))
     return out
+
+
+def _is_point(mech, entry) -> bool:
+    if isinstance(entry.value, tuple):
+        return True
+    return entry.value is None and entry.name in mech.points and entry.name not in mech.quantities
 
 
 def _period(mech, name, unit) -> float | None:

@@ -55,7 +55,8 @@ def cli(ctx, traceback):
 @click.argument("file")
 @click.option("--k", "k", type=int, default=None, help="Last digit of the matricola (0-9).")
 @click.option("--format", "form", type=click.Choice(FORMATS), default="exam", show_default=True)
-@click.option("--decimals", type=click.IntRange(0, 12), default=1, show_default=True)
+@click.option("--decimals", type=click.IntRange(0, 12), default=None,
+              help="Decimals shown (default: the file's report.decimals, else 1).")
 @click.option("--lang", type=click.Choice(["en", "it"]), default="en", show_default=True,
               help="Language of the exam format's headings.")
 @click.option("-o", "--output", default=None, help="Write to this file instead of stdout.")
@@ -69,6 +70,7 @@ def solve(file, k, form, decimals, lang, output):
     """
     from .report import render
     mech = _load(file, k)
+    decimals = mech.report.get("decimals", 1) if decimals is None else decimals
     _emit(render(mech.solve(), form, decimals, lang), output)
 
 
@@ -92,7 +94,8 @@ def explain(file, k):
               help="Digits to solve: a range (0-9) or a list (1,3,5).")
 @click.option("--format", "form", type=click.Choice(["table", "csv", "json"]), default="table",
               show_default=True)
-@click.option("--decimals", type=click.IntRange(0, 12), default=1, show_default=True)
+@click.option("--decimals", type=click.IntRange(0, 12), default=None,
+              help="Decimals shown (default: the file's report.decimals, else 1).")
 @click.option("-o", "--output", default=None, help="Write to this file instead of stdout.")
 def batch(file, ks, form, decimals, output):
     """Solve FILE for every matricola digit k: one row per k.
@@ -108,9 +111,10 @@ def batch(file, ks, form, decimals, output):
     digits = batch_mod.parse_k(ks)
     try:
         doc = load_file(file)
-        columns, units, rows = batch_mod.run(doc, digits)
+        columns, units, rows, shown = batch_mod.run(doc, digits)
     except LinkcliError as exc:
         raise exc.located(file)
+    decimals = shown if decimals is None else decimals
     if form == "json":
         import json
         data = [dict(zip(["k"] + columns, row)) for row in rows]

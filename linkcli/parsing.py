@@ -559,8 +559,13 @@ class Parser:
         return Quantity(name, "load", load, component=component, unit=unit)
 
     def report(self, data, quantities, loads, pool) -> dict:
-        spec = self.mapping(self.get(data, (), "report"), ("report",), set(SECTIONS))
+        spec = self.mapping(self.get(data, (), "report"), ("report",), set(SECTIONS) | {"decimals"})
         report = {}
+        decimals = spec.get("decimals", 1)
+        if isinstance(decimals, bool) or not isinstance(decimals, int) or not 0 <= decimals <= 12:
+            self.error(("report", "decimals"), f"decimals is a whole number 0-12, got {decimals!r}")
+        else:
+            report["decimals"] = decimals
         for section in SECTIONS:
             names = spec.get(section) or []
             path = ("report", section)
@@ -627,17 +632,22 @@ class Parser:
 
     def key_entry(self, name, printed, path, quantities, pool, wrong) -> KeyEntry:
         line = self.doc.line(path)
-        if name in pool and (isinstance(printed, list) or name not in quantities):
+        is_point = name in pool and (isinstance(printed, list) or name not in quantities)
+        if not is_point:
+            base = split_rate(name)
+            if base is None or base[0] not in quantities:
+                raise self.error(path, f"the key names '{name}', which the file does not define",
+                                 hint="define it under 'quantities' or fix the name")
+        if wrong and not _readable(printed, is_point):
+            # a garbled printed value: kept as printed, reported, never compared
+            return KeyEntry(name, str(self.doc.raw.get(path, printed)), None, 0, wrong, line)
+        if is_point:
             if not isinstance(printed, list) or len(printed) != 2:
                 raise self.error(path, f"a point's key is [x, y], got {printed!r}")
             texts = [self.doc.raw.get(path + (i,), str(v)) for i, v in enumerate(printed)]
             nums = tuple(self.printed_number(t, path + (i,)) for i, t in enumerate(texts))
             return KeyEntry(name, f"({texts[0]}, {texts[1]})", nums,
                             min(_decimals(t) for t in texts), wrong, line)
-        base = split_rate(name)
-        if base is None or base[0] not in quantities:
-            raise self.error(path, f"the key names '{name}', which the file does not define",
-                             hint="define it under 'quantities' or fix the name")
         text = self.doc.raw.get(path, str(printed))
         return KeyEntry(name, text, self.printed_number(text, path), _decimals(text), wrong, line)
 
@@ -664,6 +674,18 @@ def split_rate(name: str):
     if name.endswith("dot") and len(name) > 3:
         return name[:-3], 1
     return name, 0
+
+
+def _readable(printed, is_point: bool) -> bool:
+    """Whether a printed key value can be read as a number (or [x, y] for a point)."""
+    values = printed if is_point and isinstance(printed, list) and len(printed) == 2 else (
+        None if is_point else [printed])
+    if values is None:
+        return False
+    try:
+        return all(math.isfinite(float(str(v).replace(",", "."))) for v in values)
+    except ValueError:
+        return False
 
 
 def _decimals(text: str) -> int:

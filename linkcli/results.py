@@ -114,7 +114,7 @@ def _value(mech, name, kin, loads):
         value = [kin.q, kin.qd, kin.qdd][order]
         base = "angle" if mech.driver.kind == "angle" else "length"
         if order == 0 and base == "angle":
-            value = np.mod(value, TWO_PI)
+            value = wrap_angle(value)
     elif quantity.kind in ("x", "y"):
         z = [kin.pos, kin.vel, kin.acc][order].get(quantity.a, 0j)
         value = np.real(z) if quantity.kind == "x" else np.imag(z)
@@ -127,13 +127,17 @@ def _value(mech, name, kin, loads):
     return value / factor + 0 * kin.q, unit
 
 
+def wrap_angle(value):
+    """Angle in [0, 2 pi); values within rounding (1e-12 rad) below 2 pi are 0."""
+    value = np.mod(value, TWO_PI)
+    return np.where(value > TWO_PI - 1e-12, 0.0, value)
+
+
 def _vector(quantity, kin, order):
     z = kin.pos[quantity.b] - kin.pos[quantity.a]
     base = "angle" if quantity.kind == "angle" else "length"
     if order == 0:
-        value = np.mod(np.angle(z), TWO_PI) if base == "angle" else np.abs(z)
-        if base == "angle":
-            value = np.where(value >= TWO_PI, 0.0, value)
+        value = wrap_angle(np.angle(z)) if base == "angle" else np.abs(z)
         return value, base
     w = (kin.vel.get(quantity.b, 0.0) - kin.vel.get(quantity.a, 0.0)) / z
     if order == 1:

@@ -318,7 +318,7 @@ class _Decomposer:
             self.groups.append(Group("RPR", c, pair, (g.carrier, block.name),
                                      note=f"{b} ({g.carrier}) and {pins[0]} ({block.name})"))
             self.known.add(c)
-            self.known_bodies.add(block.name)
+            self.settle(block, pins)   # the block's pose is known now: place its other points
             return True
         return False
 

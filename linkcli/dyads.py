@@ -28,11 +28,52 @@ def _root(disc, scale2):
     return np.sqrt(np.maximum(disc, 0.0)), gap
 
 
+def _complex(re, im):
+    """re + i im as a complex array, without the temporaries of ``re + 1j * im``."""
+    shape = np.broadcast_shapes(np.shape(re), np.shape(im))
+    out = np.empty(shape, complex)
+    out.real = re
+    out.imag = im
+    return out
+
+
+def cis(angle):
+    """e^{i angle} = cos + i sin (written straight into the complex result)."""
+    angle = np.asarray(angle, dtype=float)
+    out = np.empty(angle.shape, complex)
+    np.cos(angle, out=out.real)
+    np.sin(angle, out=out.imag)
+    return out
+
+
+def _no_short(*arrays):
+    return np.zeros(np.broadcast_shapes(*(np.shape(x) for x in arrays)))
+
+
 def circle_circle(a, r1, b, r2, branch):
     """P with |P - A| = r1, |P - B| = r2; branch +1 puts P left of A->B.
 
-    a = (r1^2 - r2^2 + d^2) / 2d along A->B, h = sqrt(r1^2 - a^2) across it.
+    a = (r1^2 - r2^2 + d^2) / 2d along A->B, h = sqrt(r1^2 - a^2) across it;
+    computed as P = A + (B - A)(t + i branch s) with t = a/d, s = h/d.
     """
+    d_vec = b - a
+    d2 = np.asarray(d_vec.real * d_vec.real + d_vec.imag * d_vec.imag)
+    if np.any(d2 == 0):
+        return _circle_circle_safe(a, r1, b, r2, branch)
+    r1sq = r1 * r1
+    t = (r1sq - r2 * r2 + d2) / (2.0 * d2)
+    e = r1sq / d2 - t * t
+    if np.any(e < 0):
+        s, gap = _root(e, np.maximum(r1sq / d2, t * t))
+        d = np.sqrt(d2)
+        short = np.where(gap > 0, np.maximum(d - (r1 + r2), np.abs(r1 - r2) - d), 0.0)
+    else:
+        s, short = np.sqrt(e), _no_short(d2, r1)
+    return a + d_vec * _complex(t, s if branch > 0 else -s), short
+
+
+def _circle_circle_safe(a, r1, b, r2, branch):
+    """circle_circle where the centres may coincide (no intersection is defined there)."""
     d_vec = b - a
     d = np.abs(d_vec)
     d_safe = np.where(d > 0, d, 1.0)
@@ -41,6 +82,7 @@ def circle_circle(a, r1, b, r2, branch):
     unit = d_vec / d_safe
     p = a + (along + 1j * branch * h) * unit
     short = np.where(gap > 0, np.maximum(d - (r1 + r2), np.abs(r1 - r2) - d), 0.0)
+    short = np.where(d > 0, short, np.where(np.abs(r1 - r2) > 0, np.abs(r1 - r2), np.inf))
     return p, short
 
 
@@ -60,9 +102,14 @@ def circle_line(a, r, b, c, value, branch):
     u, e = line_frame(b, c, value)
     rel = (a - b) * u.conjugate()
     dist = rel.imag - e
-    s, gap = _root(r * r - dist * dist, np.maximum(r * r, dist * dist))
-    p = b + (1j * e + rel.real + branch * s) * u
-    return p, np.where(gap > 0, np.abs(dist) - r, 0.0)
+    disc = r * r - dist * dist
+    if np.any(disc < 0):
+        s, gap = _root(disc, np.maximum(r * r, dist * dist))
+        short = np.where(gap > 0, np.abs(dist) - r, 0.0)
+    else:
+        s, short = np.sqrt(disc), _no_short(disc)
+    along = rel.real + s if branch > 0 else rel.real - s
+    return b + _complex(along, e) * u, short
 
 
 def line_line(b1, u1, e1, b2, u2, e2):
@@ -79,13 +126,16 @@ def slotted(b, length, a, value, branch):
 
     With A - B = rho e^{i psi} and C - B = length e^{i theta}:
     sin(psi - theta) = value / (length rho); branch +1 has A ahead of B along
-    B->C (theta = psi - asin s), branch -1 behind it.
+    B->C (theta = psi - asin s), branch -1 behind it.  e^{i theta} is formed
+    algebraically: e^{i psi} (c - i s) or -e^{i psi} (c + i s), c = sqrt(1 - s^2).
     """
     w = a - b
     rho = np.abs(w)
-    s = value / (length * np.where(rho > 0, rho, 1.0))
+    rho_safe = np.where(rho > 0, rho, 1.0)
+    s = value / (length * rho_safe)
     short = np.where(np.abs(s) > 1 + ROUNDING, np.abs(value) / length - rho, 0.0)
-    alpha = np.arcsin(np.clip(s, -1.0, 1.0))
-    psi = np.angle(w)
-    theta = psi - alpha if branch > 0 else psi - np.pi + alpha
-    return b + length * np.exp(1j * theta), short
+    s = np.clip(s, -1.0, 1.0)
+    c = np.sqrt((1.0 - s) * (1.0 + s))
+    unit = np.where(rho > 0, w / rho_safe, 1.0)
+    rot = _complex(c, -s) if branch > 0 else _complex(-c, -s)
+    return b + length * (unit * rot), short

@@ -41,6 +41,8 @@ class Kinematics:
     acc: dict = field(default_factory=dict)
     short: dict = field(default_factory=dict)     # group index -> shortfall (m) array
     measure: dict = field(default_factory=dict)   # group index -> conditioning array
+    linear: dict = field(default_factory=dict, repr=False)  # group index -> rate-system inverse
+    vectors: dict = field(default_factory=dict, repr=False)  # (a, b) -> (z, z'/z) for reports
 
 
 class Solver:
@@ -80,7 +82,7 @@ class Solver:
             return pos[k] + (pos[m] - pos[n]) * w, None
         if kind == "driver-angle":
             pivot, length, reverse = group.constraints
-            return pos[pivot] + (-length if reverse else length) * np.exp(1j * q), None
+            return pos[pivot] + (-length if reverse else length) * dyads.cis(q), None
         if kind == "driver-coord":
             line, coord = group.constraints
             u, e = dyads.line_frame(pos[line.b], pos[line.c], line.value)
@@ -127,6 +129,8 @@ class Solver:
     # rates ---------------------------------------------------------------------
     def velocities(self, kin: Kinematics, qd) -> Kinematics:
         kin.qd = np.asarray(qd, dtype=float)
+        kin.vel.clear()
+        kin.vectors.clear()
         for index, group in enumerate(self.groups):
             if group.point is None:
                 continue
@@ -135,14 +139,20 @@ class Solver:
 
     def accelerations(self, kin: Kinematics, qdd) -> Kinematics:
         kin.qdd = np.asarray(qdd, dtype=float)
+        kin.acc.clear()
         for index, group in enumerate(self.groups):
             if group.point is None:
                 continue
             kin.acc[group.point] = self._rate(index, group, kin, kin.acc, kin.qdd, kin.vel)
+        kin.linear.clear()          # rates done: free the cached systems
         return kin
 
     def _rate(self, index, group, kin, d, qrate, vel):
-        """First (vel None) or second time derivative of the group's point."""
+        """First (vel None) or second time derivative of the group's point.
+
+        ``d`` holds the rates found so far; the group's own point is not in it
+        yet, so every rate read from ``d`` is a known one.
+        """
         pos = kin.pos
         if group.kind == "place":
             k, m, n, w = group.place
@@ -150,24 +160,31 @@ class Solver:
         if group.kind == "driver-angle":
             pivot = group.constraints[0]
             arm = pos[group.point] - pos[pivot]
-            if vel is None:
-                return _get(d, pivot) + 1j * qrate * arm
-            return _get(d, pivot) + (1j * qrate - kin.qd ** 2) * arm
-        p = group.point
-        g, r = [], []
-        for c in group.constraints:
-            g.append(_grad(c, pos, p))
-            rhs = -_rate_known(c, pos, d, kin.q, qrate)
-            if vel is not None:
-                rhs = rhs - _curv(c, vel, kin.qd)
-            r.append(rhs)
-        det = cross(g[0], g[1])
-        if vel is None:
-            kin.measure[index] = np.abs(det) / (np.abs(g[0]) * np.abs(g[1]))
-        safe = np.where(det == 0, 1.0, det)
-        vx = (r[0] * g[1].imag - r[1] * g[0].imag) / safe
-        vy = (g[0].real * r[1] - g[1].real * r[0]) / safe
-        return vx + 1j * vy
+            rate = arm * (1j * qrate) if vel is None else arm * (1j * qrate - kin.qd ** 2)
+            return d[pivot] + rate if pivot in d else rate
+        k1, k2, g1, g2 = self._inverse(index, group, kin)
+        c1, c2 = group.constraints
+        r1 = _rhs(c1, g1, pos, d, kin.q, qrate, vel, kin.qd)
+        r2 = _rhs(c2, g2, pos, d, kin.q, qrate, vel, kin.qd)
+        return _combine(r1, k1, r2, k2)
+
+    def _inverse(self, index, group, kin):
+        """The group's 2x2 rate system Re(conj(G_i) V) = r_i, solved once per position.
+
+        V = r_1 K_1 + r_2 K_2 with K_1 = -i G_2 / det, K_2 = i G_1 / det and
+        det = cross(G_1, G_2); the K are kept as (real, imaginary) arrays.
+        """
+        lin = kin.linear.get(index)
+        if lin is None:
+            pos, p = kin.pos, group.point
+            g1, g2 = (_grad(c, pos, p) for c in group.constraints)
+            det = cross(g1, g2)
+            norms = np.abs(g1) * np.abs(g2)      # hypot: no underflow of tiny guides
+            kin.measure[index] = np.abs(det) / np.where(norms > 0, norms, 1.0)
+            inv = 1.0 / np.where(det == 0, 1.0, det)
+            lin = ((g2.imag * inv, -g2.real * inv), (-g1.imag * inv, g1.real * inv), g1, g2)
+            kin.linear[index] = lin
+        return lin
 
     # failures ------------------------------------------------------------------
     def check(self, kin: Kinematics, velocities: bool):
@@ -228,28 +245,56 @@ def _grad(c, pos, unknown):
     return 1.0 + 0j if c.axis == "x" else 1j
 
 
-def _rate_known(c, pos, d, q, qrate):
-    """Part of dg/dt (or d2g/dt2 without curvature) linear in the known rates ``d``."""
-    if isinstance(c, Dist):
-        value = 2.0 * (np.conj(pos[c.p] - pos[c.a]) * (_get(d, c.p) - _get(d, c.a))).real
-        return value - 2.0 * q * qrate if c.length is None else value
-    if isinstance(c, Line):
-        db = _get(d, c.b)
-        return cross(_get(d, c.c) - db + 0j, pos[c.p] - pos[c.b]) + \
-            cross(pos[c.c] - pos[c.b], _get(d, c.p) - db + 0j)
-    value = _get(d, c.p) + 0j
-    return (value.real if c.axis == "x" else value.imag) - qrate
+def _delta(d, x, y):
+    """d[x] - d[y], absent entries being zero; None when both are absent."""
+    if x in d:
+        return d[x] - d[y] if y in d else d[x]
+    return -d[y] if y in d else None
 
 
-def _curv(c, vel, qd):
-    """Quadratic part 2 B(V, V) of d2g/dt2."""
-    if isinstance(c, Dist):
-        value = 2.0 * np.abs(_get(vel, c.p) - _get(vel, c.a)) ** 2
-        return value - 2.0 * qd ** 2 if c.length is None else value
-    if isinstance(c, Line):
-        vb = _get(vel, c.b)
-        return 2.0 * cross(_get(vel, c.c) - vb + 0j, _get(vel, c.p) - vb + 0j)
-    return 0.0
+def _rhs(c, grad, pos, d, q, qrate, vel, qd):
+    """Right-hand side r of Re(conj(G) V) = r for one constraint.
+
+    r = -(part of dg/dt linear in the known rates ``d``) for velocities; for
+    accelerations (``vel`` given) also minus the quadratic part 2 B(V, V).
+    ``grad`` is the constraint's gradient G with respect to the unknown point.
+    """
+    if isinstance(c, Dist):           # g = |P - A|^2 - L^2, G = 2 (P - A), P unknown
+        va = d.get(c.a)
+        r = 0.0 if va is None else (grad.conjugate() * va).real
+        if c.length is None:
+            r = r + 2.0 * q * qrate
+        if vel is not None:
+            dv = _delta(vel, c.p, c.a)
+            if dv is not None:
+                r = r - 2.0 * (dv.real * dv.real + dv.imag * dv.imag)
+            if c.length is None:
+                r = r + 2.0 * qd * qd
+        return r
+    if isinstance(c, Line):           # g = cross(C - B, P - B) - value
+        r = 0.0
+        dcb, dpb = _delta(d, c.c, c.b), _delta(d, c.p, c.b)
+        if dcb is not None:
+            r = r - cross(dcb + 0j, pos[c.p] - pos[c.b])
+        if dpb is not None:
+            r = r - cross(pos[c.c] - pos[c.b] + 0j, dpb)
+        if vel is not None:
+            vcb, vpb = _delta(vel, c.c, c.b), _delta(vel, c.p, c.b)
+            if vcb is not None and vpb is not None:
+                r = r - 2.0 * cross(vcb + 0j, vpb)
+        return r
+    return qrate                      # g = x (or y) of P - q
+
+
+def _combine(r1, k1, r2, k2):
+    """r1 K1 + r2 K2 as a complex array, skipping terms whose r is a zero scalar."""
+    re = im = 0.0
+    for r, (kx, ky) in ((r1, k1), (r2, k2)):
+        if np.ndim(r) == 0 and r == 0:
+            continue
+        re = re + r * kx
+        im = im + r * ky
+    return dyads._complex(re, im) if np.ndim(kx) or np.ndim(re) else complex(re, im)
 
 
 def residuals(solver: Solver, kin: Kinematics) -> dict:

@@ -76,7 +76,8 @@ def sweep(mech, span, n=181):
 
 def size(mech):
     """Characteristic length (m): the largest coordinate of the figure."""
-    pts = list(mech.fixed.values()) + list(mech.moving.values())
+    pts = [p for name, p in mech.fixed.items() if not name.startswith("~")]  # no guide helpers
+    pts += list(mech.moving.values())
     return max(abs(p) for p in pts)
 
 
@@ -163,5 +164,14 @@ def conditioning(kin):
 
 
 def shipped():
+    """Shipped mechanism files that the closed form solves (class-III files need Newton)."""
     import glob
-    return sorted(glob.glob(os.path.join(MECHANISMS, "*.yaml")))
+    from linkcli.errors import StructureError
+    out = []
+    for path in sorted(glob.glob(os.path.join(MECHANISMS, "*.yaml"))):
+        try:
+            linkcli.load(path).solver()
+        except StructureError:
+            continue
+        out.append(path)
+    return out

@@ -18,19 +18,19 @@ def load(path: str, k: int | None = None):
 
     ``k`` overrides the file's default; ``path`` '-' reads standard input.
     """
-    from .parsing import parse
+    from .loading import build
     from .yamlsource import load_file
     try:
-        return parse(load_file(path), k)
+        return build(load_file(path), k)
     except LinkcliError as exc:
         raise exc.located(path)
 
 
 def loads(text: str, k: int | None = None, name: str = "<text>"):
     """Like :func:`load`, from YAML text."""
-    from .parsing import parse
+    from .loading import build
     from .yamlsource import load_text
-    return parse(load_text(text, name), k)
+    return build(load_text(text, name), k)
 
 
 __all__ = ["load", "loads", "LinkcliError", "__version__"]

@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import InputError
-from .parsing import parse
+from .loading import build
 from .results import report_names
 
 
@@ -38,7 +38,7 @@ def run(doc, ks: list[int]):
     columns: list[str] = []
     units: dict = {}
     for k in ks:
-        mech = parse(doc, k)
+        mech = build(doc, k)
         result = mech.solve()
         if not columns:
             decimals = mech.report.get("decimals", 1)

@@ -14,7 +14,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .errors import LinkcliError
-from .parsing import parse, split_rate
+from .loading import build
+from .parsing import split_rate
 from .yamlsource import load_file
 
 ROUND_SLACK = 1e-9
@@ -62,17 +63,17 @@ def collect(paths) -> list[str]:
 
 
 def check_file(path: str) -> FileReport:
-    report = FileReport(path)
+    report = FileReport("<stdin>" if path == "-" else path)
     try:
         doc = load_file(path)
-        base = parse(doc)
+        base = build(doc)
     except LinkcliError as exc:
         report.error = str(exc.located(path))
         return report
     report.keys = len(base.keys)
     for key in base.keys:
         try:
-            mech = base if key.k is None or key.k == base.k else parse(doc, key.k)
+            mech = base if key.k is None or key.k == base.k else build(doc, key.k)
             report.outcomes += _check_key(mech, key)
         except LinkcliError as exc:
             report.error = f"k = {key.k}: {exc.located(path)}"

@@ -28,13 +28,20 @@ def explain(mech) -> str:
         branch = f"  (branch {'+' if group.branch > 0 else '-'} as in the figure)" \
             if group.kind in ("RRR", "RRP", "PRR", "RPR") else ""
         lines.append(f"  {step}. {group.describe()}{branch}")
-    lines += ["", "Statics by virtual work: sum of load powers = 0"]
+    if any(b.kind == "block" and b.guide.carrier != FRAME for b in mech.bodies.values()):
+        lines.append("  (sliders on moving guides add Coriolis terms to the accelerations)")
+    if mech.extras.get("dynamics") is not None:
+        from .reactions import balance_lines
+        lines += [""] + balance_lines(mech)
+    else:
+        lines += ["", "Statics by virtual work: sum of load powers = 0"] + _statics_terms(mech)
+    return "\n".join(lines)
+
+
+def _statics_terms(mech) -> list:
     terms = []
     for load in mech.loads.values():
         target = {"force": f"v_{load.target}", "torque": f"omega_{load.target}",
                   "axial": f"d|{load.target}|/dt", "driver": "qdot"}[load.kind]
         terms.append(f"{load.name} * {target}")
-    lines.append("  " + " + ".join(terms) + " = 0" if terms else "  (no loads)")
-    if any(b.kind == "block" and b.guide.carrier != FRAME for b in mech.bodies.values()):
-        lines.append("  (sliders on moving guides add Coriolis terms to the accelerations)")
-    return "\n".join(lines)
+    return ["  " + " + ".join(terms) + " = 0" if terms else "  (no loads)"]

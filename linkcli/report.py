@@ -11,12 +11,14 @@ import numpy as np
 HEADINGS = {
     "en": {"position": "Position analysis", "velocity": "Velocity analysis",
            "acceleration": "Acceleration analysis", "statics": "Statics (virtual work)",
-           "points": "Coordinates of notable points", "driver": "Driver"},
+           "points": "Coordinates of notable points", "driver": "Driver",
+           "dynamics": "Dynamics (virtual work with inertia and gravity)"},
     "it": {"position": "Analisi Cinematica di POSIZIONE",
            "velocity": "Analisi Cinematica di VELOCITA'",
            "acceleration": "Analisi Cinematica di ACCELERAZIONE",
            "statics": "Analisi STATICA",
-           "points": "Coordinate di punti notevoli", "driver": "Movente"},
+           "points": "Coordinate di punti notevoli", "driver": "Movente",
+           "dynamics": "Analisi DINAMICA"},
 }
 
 
@@ -45,7 +47,8 @@ def exam(result, decimals: int = 1, lang: str = "en") -> str:
         names = mech.report.get(section) or []
         if not names:
             continue
-        lines += ["", words[section]]
+        dynamic = section == "statics" and mech.extras.get("dynamics") is not None
+        lines += ["", words["dynamics" if dynamic else section]]
         width = max(len(n) for n in names)
         for name in names:
             lines.append(f"  {name:<{width}} = {fmt(_scalar(result, name), decimals):>10} "

@@ -146,7 +146,13 @@ class Mechanism:
         return [p for p in self.fixed if not p.startswith("~")] + list(self.moving)
 
     def unknown_load(self) -> Load:
-        return next(load for load in self.loads.values() if load.value is None)
+        load = next((load for load in self.loads.values() if load.value is None), None)
+        if load is None:
+            from .errors import InputError
+            raise InputError("no load is 'unknown', so there is nothing to balance",
+                             file=self.file, key="loads",
+                             hint="give one load, usually the driver's, the value 'unknown'")
+        return load
 
     # the Python API ------------------------------------------------------------
     def solver(self):
@@ -155,11 +161,13 @@ class Mechanism:
             self._solver = Solver(self)
         return self._solver
 
-    def solve(self, q=None, qdot=None, qddot=None, *, names=None):
+    def solve(self, q=None, qdot=None, qddot=None, *, names=None, method="closed", tol=None):
         """Solve at driver value(s) ``q`` (display units; default from the file).
 
         Scalars or NumPy arrays are accepted.  Returns a :class:`Result` whose
         ``values`` maps every report name to its value in display units.
+        ``method`` 'newton' uses Newton-Raphson on all constraint equations
+        (relative tolerance ``tol``) instead of the closed form of the groups.
         """
         from .results import evaluate
-        return evaluate(self, q, qdot, qddot, names=names)
+        return evaluate(self, q, qdot, qddot, names=names, method=method, tol=tol)

@@ -22,7 +22,7 @@ TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points
             "dynamics"}
 SECTIONS = ("position", "velocity", "acceleration", "statics", "points")
 UNKNOWN = "unknown"
-NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*\Z")   # \Z: no trailing newline
 
 
 class InputErrors(InputError):
@@ -246,6 +246,12 @@ class Parser:
             local = self.local(spec["local"], path + ("local",), points, units)
         else:
             local = self.shape(spec["shape"], path + ("shape",), points, units)
+        size = max(abs(z) for z in local.values())
+        for i, a in enumerate(points):     # coincident points (relative to the body's size)
+            b = next((b for b in points[i + 1:] if abs(local[b] - local[a]) <= 1e-12 * size), None)
+            if b is not None:
+                raise self.error(path, f"points {a} and {b} of the link coincide",
+                                 hint="check its lengths and angles")
         bodies[name] = Body(name, "link", points, local)
 
     def positive(self, value, path, units, kind="length") -> float:
@@ -408,7 +414,8 @@ class Parser:
             angle = self.number(self.get(value, path, "angle"), path + ("angle",), "angle", units)
             direction = cmath.exp(1j * angle)
         b, c = f"~{slider}.0", f"~{slider}.1"
-        scale = max(abs(origin), max((abs(p) for p in fixed.values()), default=0.0), 1e-300)
+        # a direction vector of at least unit length (SI): never underflows when squared
+        scale = max(abs(origin), max((abs(p) for p in fixed.values()), default=0.0), 1.0)
         fixed[b] = origin
         fixed[c] = origin + direction * scale
         return Guide(FRAME, b, c, offset, text)
@@ -519,12 +526,12 @@ class Parser:
         for name, load in loads.items():
             quantities[name] = Quantity(name, "load", name)
         for name, value in spec.items():
-            q = self.block(self.quantity, name, value, pool, loads)
+            q = self.block(self.quantity, name, value, pool, loads, driver)
             if q is not None:
                 quantities[name] = q
         return quantities
 
-    def quantity(self, name, value, pool, loads) -> Quantity:
+    def quantity(self, name, value, pool, loads, driver=None) -> Quantity:
         path = ("quantities", name)
         self.name(name, path, what="quantity")
         if name.endswith("dot"):
@@ -537,14 +544,17 @@ class Parser:
             raise self.error(path, "give exactly one of angle, length, x, y, load")
         kind = kinds[0]
         unit = value.get("unit")
+        if unit is not None and not isinstance(unit, str):
+            raise self.error(path + ("unit",), f"unit is a unit name, got {unit!r}")
         table = {"angle": ANGLE, "load": None}.get(kind, LENGTH)
-        if table is None and unit is not None:
-            table = FORCE if loads.get(value.get("load"), None) is None or \
-                loads[value["load"]].kind in ("force", "axial") else TORQUE
-        if unit is not None and unit not in (table or {}) and not (
-                kind == "load" and unit in FORCE.keys() | TORQUE.keys()):
+        if kind == "load" and isinstance(value["load"], str) and value["load"] in loads:
+            load = loads[value["load"]]   # the unit the results use for this load
+            torque = load.kind == "torque" or load.kind == "driver" and (
+                driver is None or driver.kind == "angle")
+            table = TORQUE if torque else FORCE
+        if unit is not None and table is not None and unit not in table:
             raise self.error(path + ("unit",), f"unknown unit {unit!r} for a {kind} quantity",
-                             hint="use one of " + ", ".join(table or FORCE))
+                             hint="use one of " + ", ".join(table))
         if kind in ("angle", "length"):
             a, b = self.pair(value[kind], path + (kind,), pool)
             return Quantity(name, kind, a, b, unit=unit)
@@ -661,6 +671,8 @@ class Parser:
         return value
 
     def check_points_used(self, pool, bodies, actuators, fixed):
+        if any((e.key or "").startswith(("links", "actuators", "sliders")) for e in self.errors):
+            return   # a body that failed to parse would make its points look unused
         used = {p for body in bodies.values() for p in body.points}
         for point in sorted(pool - used - set(fixed)):
             self.error(("points", point), f"moving point '{point}' belongs to no link, slider or "

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .errors import InputError, SolveError
 from .parsing import split_rate
 from .statics import unknown_load
 from .units import ANGLE, FORCE, LENGTH, TORQUE
@@ -40,7 +41,8 @@ def needed_orders(mech, names):
         if base in mech.quantities and mech.quantities[base].kind != "load":
             orders.add(order)
         else:
-            orders.add(1)   # loads need velocities (virtual work)
+            # loads need velocities (virtual work); with masses also accelerations
+            orders.add(2 if mech.extras.get("dynamics") is not None else 1)
     return max(orders)
 
 
@@ -51,9 +53,21 @@ def report_names(mech):
     return names
 
 
-def evaluate(mech, q=None, qdot=None, qddot=None, names=None) -> Result:
+def solver_for(mech, method="closed", tol=None):
+    """The closed-form solver of the Assur groups, or ('newton') Newton-Raphson on all
+    constraint equations with tolerance ``tol`` relative to the mechanism's size."""
+    if method == "closed":
+        return mech.solver()
+    if method == "newton":
+        from .newton import newton_solver
+        return newton_solver(mech, tol)
+    raise InputError(f"unknown method {method!r}", key="method", hint="closed or newton")
+
+
+def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
+             tol=None) -> Result:
     """Solve ``mech`` at driver value(s) ``q`` (display units) and evaluate ``names``."""
-    solver = mech.solver()
+    solver = solver_for(mech, method, tol)
     names = list(names) if names is not None else report_names(mech)
     base = "angle" if mech.driver.kind == "angle" else "length"
     units = mech.units
@@ -69,6 +83,12 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None) -> Result:
         solver.check(kin, velocities=True)
     if order >= 2:
         solver.accelerations(kin, qdd_si)
+    return collect(mech, solver, kin, names)
+
+
+def collect(mech, solver, kin, names) -> Result:
+    """Evaluate ``names`` (display units) on kinematics ``kin`` solved as far as they need."""
+    units = mech.units
     result = Result(mech, kinematics=kin)
     loads = _loads(mech, solver, kin, names)
     for name in names:
@@ -80,7 +100,19 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None) -> Result:
         z = kin.pos[p]
         result.points[p] = (np.real(z) / l_factor + 0 * kin.q, np.imag(z) / l_factor + 0 * kin.q)
         result.units[p] = l_unit
+    _require_finite(mech, result)
     return result
+
+
+def _require_finite(mech, result):
+    """Refuse to return NaN or infinity: overflowing data or coincident points."""
+    named = list(result.values.items()) + [(p, xy) for p, xy in result.points.items()]
+    for name, value in named:
+        if not np.all(np.isfinite(np.asarray(value, dtype=float))):
+            raise SolveError(f"'{name}' is not a finite number: the data overflow floating-point "
+                             "arithmetic or the points that define it coincide",
+                             file=mech.file, hint="check the magnitudes of lengths, rates and "
+                             "loads, and the driver value")
 
 
 def _loads(mech, solver, kin, names):
@@ -92,7 +124,11 @@ def _loads(mech, solver, kin, names):
     values = {n: load.value for n, load in mech.loads.items()}
     unit_kin = solver.velocities(type(kin)(kin.q, pos=kin.pos), np.ones_like(kin.q))
     unknown = mech.unknown_load()
-    values[unknown.name] = unknown_load(mech, kin.pos, unit_kin.vel)
+    extra = 0.0
+    if mech.extras.get("dynamics") is not None:   # inertia, gravity, friction (d'Alembert)
+        from .reactions import dynamic_power
+        extra = dynamic_power(mech, kin, unit_kin)
+    values[unknown.name] = unknown_load(mech, kin.pos, unit_kin.vel, extra_power=extra)
     return values
 
 
@@ -124,28 +160,63 @@ def _value(mech, name, kin, loads):
     unit, factor = units.display(base, order)
     if quantity.unit:
         unit, factor = _override(quantity.unit, base, order)
+    if np.shape(value) == np.shape(kin.q):      # a fresh array; -0.0 becomes 0.0
+        if factor != 1:
+            return value / factor, unit
+        if quantity.kind in ("angle", "length") and isinstance(value, np.ndarray) \
+                and value.flags.owndata:        # computed here: normalise in place
+            value += 0.0
+            return value, unit
+        return value + 0.0, unit
     return value / factor + 0 * kin.q, unit
 
 
-def wrap_angle(value):
-    """Angle in [0, 2 pi); values within rounding (1e-12 rad) below 2 pi are 0."""
-    value = np.mod(value, TWO_PI)
+def wrap_angle(value, principal=False):
+    """Angle in [0, 2 pi); values within rounding (1e-12 rad) below 2 pi are 0.
+
+    ``principal``: the value is already in [-pi, pi] (as from np.angle), so
+    adding 2 pi to the negative ones is the same as the modulo, and cheaper.
+    """
+    if principal:
+        value = value + np.where(value < 0, TWO_PI, 0.0)
+    else:
+        value = np.mod(value, TWO_PI)
     return np.where(value > TWO_PI - 1e-12, 0.0, value)
 
 
+def _relative(rates, a, b):
+    """rates[b] - rates[a], absent (fixed) points having zero rate."""
+    if a in rates:
+        return rates[b] - rates[a] if b in rates else -rates[a]
+    return rates.get(b, 0j)
+
+
 def _vector(quantity, kin, order):
-    z = kin.pos[quantity.b] - kin.pos[quantity.a]
     base = "angle" if quantity.kind == "angle" else "length"
     if order == 0:
-        value = wrap_angle(np.angle(z)) if base == "angle" else np.abs(z)
+        z = _rates(kin, quantity.a, quantity.b, rate=False)[0]
+        value = wrap_angle(np.angle(z), principal=True) if base == "angle" else np.abs(z)
         return value, base
-    w = (kin.vel.get(quantity.b, 0.0) - kin.vel.get(quantity.a, 0.0)) / z
+    z, w = _rates(kin, quantity.a, quantity.b)
     if order == 1:
         return (w.imag if base == "angle" else np.abs(z) * w.real), base
-    dw = (kin.acc.get(quantity.b, 0.0) - kin.acc.get(quantity.a, 0.0)) / z - w * w
-    if base == "angle":
-        return dw.imag, base
+    dw = _relative(kin.acc, quantity.a, quantity.b) / z
+    if base == "angle":                 # Im(z''/z - w^2)
+        return dw.imag - 2.0 * w.real * w.imag, base
+    dw = dw - w * w
     return np.abs(z) * (dw.real + w.real ** 2), base
+
+
+def _rates(kin, a, b, rate=True):
+    """z = P_b - P_a and (``rate``) w = z'/z, kept on ``kin`` for the other orders."""
+    cache = kin.vectors if hasattr(kin, "vectors") else {}
+    z, w = cache.get((a, b), (None, None))
+    if z is None:
+        z = kin.pos[b] - kin.pos[a]
+    if rate and w is None:
+        w = _relative(kin.vel, a, b) / z
+    cache[(a, b)] = (z, w)
+    return z, w
 
 
 def _override(unit, base, order):

@@ -75,7 +75,7 @@ class Group:
         if self.kind == "place":
             return f"place {self.point} on {self.bodies[0]} (rigid)"
         if self.kind == "driver-angle":
-            return f"driver: crank {self.bodies[0]}, {self.note}"
+            return f"driver: {self.bodies[0]} (crank), {self.note}"
         if self.kind == "driver-coord":
             return f"driver: slider {self.bodies[0]}, {self.note}"
         if self.kind == "RPR-actuator":
@@ -164,7 +164,8 @@ class _Decomposer:
             raise self.fail(
                 f"the structure does not decompose into dyads (RRR, RRP, PRP, RPR): points "
                 f"{', '.join(missing)} are not reached",
-                hint="it may hold a class-III group (triad); check the links around them")
+                hint="it may hold a class-III group (triad): solve it with --method newton, "
+                "or check the links around them")
         return self.groups
 
     # driver --------------------------------------------------------------------
@@ -197,7 +198,8 @@ class _Decomposer:
             block = next((b for b in self.mech.bodies.values()
                           if b.kind == "block" and d.a in b.points), None)
             if block is None or block.guide.carrier != FRAME:
-                raise self.fail(f"a {d.kind} driver needs {d.a} on a slider of a fixed guide")
+                article = "an" if d.kind == "x" else "a"
+                raise self.fail(f"{article} {d.kind} driver needs {d.a} on a slider of a fixed guide")
             line = self.line(block, d.a, d.a)
             self.groups.append(Group("driver-coord", d.a, (line, Coord(d.a, d.kind)),
                                      (block.name,), note=f"q = {d.kind} of {d.a}", driver=True))

@@ -43,7 +43,7 @@ class Units:
             if table is None:
                 raise InputError(f"unknown unit kind '{kind}'", key=f"units.{kind}",
                                  hint="use one of " + ", ".join(KINDS))
-            if name not in table:
+            if not isinstance(name, str) or name not in table:
                 raise InputError(f"unknown {kind} unit '{name}'", key=f"units.{kind}",
                                  hint="use one of " + ", ".join(table))
             self.names[kind] = name

@@ -4,3 +4,28 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MECHANISMS = os.path.join(ROOT, "mechanisms")
 sys.path.insert(0, ROOT)
+
+
+# --- fuzzing: how many cases ran (tests/test_fuzz.py, tests/test_schema.py) ------------
+import collections  # noqa: E402
+
+import pytest  # noqa: E402
+
+_FUZZ_COUNTS: dict = collections.defaultdict(collections.Counter)
+
+
+@pytest.fixture(scope="session")
+def fuzz_counter():
+    """Counters by fuzz test group: 'cases' and the exit codes seen."""
+    return _FUZZ_COUNTS
+
+
+def pytest_terminal_summary(terminalreporter):
+    if not _FUZZ_COUNTS:
+        return
+    total = sum(c["cases"] for c in _FUZZ_COUNTS.values())
+    terminalreporter.write_sep("-", f"fuzzing: {total} cases")
+    for group, counts in sorted(_FUZZ_COUNTS.items()):
+        detail = ", ".join(f"{k} {v}" for k, v in sorted(counts.items()) if k != "cases")
+        terminalreporter.write_line(f"  {group}: {counts['cases']} cases"
+                                    + (f" ({detail})" if detail else ""))

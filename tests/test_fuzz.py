@@ -1,0 +1,211 @@
+"""Fuzzing the command line: mutated mechanism files, random expressions and
+random text never crash linkcli, never hang, and exit only with the documented
+codes.
+
+Every case runs ``linkcli.cli.main`` in-process on the file given as '-'
+(standard input).  A case fails on an internal error (exit 70, a traceback),
+on an exit code outside {0, 1, 2, 3}, on NaN or infinity in a successful JSON
+result, or when it runs longer than ``TIME_LIMIT`` seconds.  Hypothesis runs
+derandomized or with a fixed seed per file, so the cases are the same on every
+run.  The number of cases is printed in the terminal summary.
+"""
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import math
+import os
+import signal
+import sys
+import time
+import zlib
+
+import pytest
+from hypothesis import HealthCheck, given, seed, settings
+from hypothesis import strategies as st
+
+from linkcli.cli import main
+from linkcli.errors import ExpressionError
+from linkcli.expressions import MAX_MAGNITUDE, MIN_MAGNITUDE, evaluate
+
+from mutations import (EXTRA, SHIPPED, TEMPLATE, data_of, expressions, mutated, numbers,
+                       to_yaml)
+
+EXIT_CODES = {0, 1, 2, 3}
+TIME_LIMIT = 10.0          # seconds for one case: far above any real one (milliseconds)
+CASES_PER_FILE = max(50, 900 // max(1, len(SHIPPED)))
+FUZZ = settings(derandomize=True, deadline=None, database=None, print_blob=True,
+                suppress_health_check=list(HealthCheck))
+
+COMMANDS = [
+    ["solve", "-"],
+    ["solve", "-", "--format", "json"],
+    ["solve", "-", "--format", "csv", "--decimals", "3"],
+    ["solve", "-", "--lang", "it", "--format", "table"],
+    ["validate", "-"],
+    ["explain", "-"],
+    ["check", "-"],
+    ["batch", "-", "--k", "0,7"],
+    ["solve", "-", "--reactions"],
+    ["solve", "-", "--method", "newton", "--format", "json"],
+    ["sweep", "-", "--from", "0", "--to", "90", "--steps", "3", "--format", "json"],
+]
+
+
+class Hang(BaseException):
+    """Raised by the alarm when one case runs too long (not an Exception: main
+    must not catch it)."""
+
+
+def _alarm(_signum, _frame):
+    raise Hang()
+
+
+def run(args, stdin_text):
+    """Run the CLI in-process: (exit code, stdout, stderr)."""
+    out, err = io.StringIO(), io.StringIO()
+    saved = sys.stdin
+    sys.stdin = io.StringIO(stdin_text)
+    previous = signal.signal(signal.SIGALRM, _alarm)
+    signal.setitimer(signal.ITIMER_REAL, TIME_LIMIT)
+    try:
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            code = main(list(args))
+    except Hang:
+        pytest.fail(f"linkcli {' '.join(args)} ran longer than {TIME_LIMIT} s on:\n{stdin_text}")
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+        sys.stdin = saved
+    return code, out.getvalue(), err.getvalue()
+
+
+def check_case(args, text, counter, what=""):
+    code, out, err = run(args, text)
+    counter["cases"] += 1
+    counter[f"exit {code}"] += 1
+    counter[f"command {args[0]}"] += 1
+    context = f"\ncommand: linkcli {' '.join(args)}\nmutation: {what}\nstdout: {out[-2000:]}" \
+              f"\nstderr: {err[-2000:]}\nfile:\n{text}"
+    assert code in EXIT_CODES, f"exit code {code}" + context
+    assert "Traceback" not in err and "internal error" not in err, context
+    if code == 0 and "json" in args and args[0] == "solve":
+        values = json.loads(out)["values"]
+        bad = {k: v for k, v in values.items()
+               if not all(math.isfinite(x) for x in (v if isinstance(v, list) else [v]))}
+        assert not bad, f"non-finite values {bad}" + context
+    if code in (2, 3) and args[0] not in ("validate", "check"):
+        assert err.startswith(("linkcli: ", "Usage:")), context
+    return code
+
+
+@pytest.mark.parametrize("path", SHIPPED + EXTRA, ids=os.path.basename)
+def test_mutated_mechanism_files(path, fuzz_counter):
+    """Deleted keys, wrong types, swapped points, odd numbers, random expressions."""
+    base = data_of(path)
+    examples = CASES_PER_FILE if path in SHIPPED else CASES_PER_FILE // 2
+
+    @seed(zlib.crc32(os.path.basename(path).encode()))
+    @settings(FUZZ, derandomize=False, max_examples=examples)
+    @given(case=mutated(base), command=st.sampled_from(COMMANDS))
+    def fuzz(case, command):
+        data, what = case
+        check_case(command, to_yaml(data), fuzz_counter["mutated files"], what)
+
+    fuzz()
+
+
+@settings(FUZZ, max_examples=300)
+@given(expression=expressions() | numbers(), slot=st.sampled_from(["r", "l", "value", "rate"]))
+def test_random_expressions_in_a_file(expression, slot, fuzz_counter):
+    """Random expressions as parameters and driver values of the template, solved."""
+    data = data_of(TEMPLATE)
+    if slot in ("r", "l"):
+        data["params"][slot] = expression
+    else:
+        data["driver"][slot] = expression
+    check_case(["solve", "-", "--format", "json"], to_yaml(data),
+               fuzz_counter["random expressions (CLI)"], f"{slot} = {expression!r}")
+
+
+@settings(FUZZ, max_examples=1000)
+@given(expression=expressions() | st.text(max_size=60))
+def test_random_expressions_evaluate_or_refuse_quickly(expression, fuzz_counter):
+    """The evaluator returns a number in range or refuses with ExpressionError, fast."""
+    fuzz_counter["random expressions (evaluator)"]["cases"] += 1
+    start = time.perf_counter()
+    try:
+        value = evaluate(expression, {"k": 3.0, "r": 50.0, "l": 150.0})
+    except ExpressionError as exc:
+        assert str(exc)
+    else:
+        assert isinstance(value, float) and math.isfinite(value)
+        assert value == 0 or MIN_MAGNITUDE <= abs(value) <= MAX_MAGNITUDE
+    assert time.perf_counter() - start < 0.5
+
+
+@settings(FUZZ, max_examples=200)
+@given(text=st.text(max_size=300) | st.binary(max_size=200).map(
+    lambda b: b.decode("latin-1")), command=st.sampled_from(COMMANDS))
+def test_random_text_as_a_file(text, command, fuzz_counter):
+    """Arbitrary text (YAML or not) as the mechanism file."""
+    check_case(command, text, fuzz_counter["random text"], "random text")
+
+
+# --- hostile input: bounded time and memory ----------------------------------------------
+BOMB = ("a: &a [x, x, x, x, x, x, x, x, x]\n"
+        + "".join(f"{c}: &{c} [*{p}, *{p}, *{p}, *{p}, *{p}, *{p}, *{p}, *{p}, *{p}]\n"
+                  for p, c in zip("abcdefgh", "bcdefghi")))
+
+
+@pytest.mark.parametrize("name, text, words", [
+    ("alias bomb", BOMB, "anchors and aliases"),
+    ("a million values", "[" + ",".join(["1"] * 330_000) + "]", "more than 50000 values"),
+    ("deep nesting", "[" * 400_000 + "]" * 400_000, "deeper than 40 levels"),
+    ("a huge integer", "title: x\nk: " + "9" * 900_000 + "\n", "k must be a digit"),
+    ("over the size limit", "#" * 2_000_000, "larger than 1000 kB"),
+])
+def test_hostile_documents_are_refused_in_bounded_time_and_memory(name, text, words):
+    """Refused in under a second (real cases take milliseconds), with under 40 MB
+    allocated while reading (the text itself is up to 2 MB)."""
+    import tracemalloc
+    start = time.perf_counter()
+    code, _, err = run(["solve", "-"], text)
+    elapsed = time.perf_counter() - start
+    assert code == 2 and words in err, err
+    assert elapsed < 1.0, f"{name}: {elapsed:.2f} s"
+    tracemalloc.start()
+    try:
+        assert run(["validate", "-"], text)[0] == 2
+        peak = tracemalloc.get_traced_memory()[1] / 1e6
+    finally:
+        tracemalloc.stop()
+    assert peak < 40, f"{name}: {peak:.0f} MB"
+
+
+@pytest.mark.parametrize("text", ["9**9**9", "(9**9)**(9**9)", "10**10**10", "2**100000",
+                                  "9.9**999", "-" * 350 + "1", "1" + "*9" * 199])
+def test_huge_powers_and_deep_expressions_are_refused_quickly(text):
+    start = time.perf_counter()
+    with pytest.raises(ExpressionError):
+        evaluate(text, {"k": 3.0})
+    assert time.perf_counter() - start < 0.1
+
+
+@pytest.mark.parametrize("text", [
+    "__import__('os').system('echo owned')", "().__class__.__bases__[0].__subclasses__()",
+    "(lambda: 1)()", "lambda: 1", "k.real", "k[0]", "[x for x in (1, 2)]", "open('/etc/passwd')",
+    "eval('1')", "exec('1')", "getattr(k, 'real')", "globals()", "sin.__call__(1)",
+    "f'{k}'", "(x := 1)", "sqrt(*[4])", "k if k else 1", "not k", "~k", "k @ k", "k % 2",
+])
+def test_code_is_never_run(text, monkeypatch):
+    import builtins
+
+    def forbidden(*_args, **_kw):
+        raise AssertionError("the evaluator reached Python's eval, exec or import")
+    monkeypatch.setattr(builtins, "eval", forbidden)
+    monkeypatch.setattr(builtins, "exec", forbidden)
+    monkeypatch.setattr(builtins, "__import__", forbidden)
+    with pytest.raises(ExpressionError):
+        evaluate(text, {"k": 3.0})

@@ -24,7 +24,7 @@ import numpy as np
 from . import dyads
 from .dyads import cross
 from .errors import AssemblyError, SingularError
-from .topology import Coord, Dist, Line, analyse
+from .topology import Dist, Line, analyse
 
 SINGULAR = 1e-9
 

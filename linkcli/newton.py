@@ -37,10 +37,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from .dyads import cis
-from .errors import AssemblyError, InputError, MobilityError, SingularError, StructureError
+from .errors import AssemblyError, InputError, SingularError, StructureError
 from .kinematics import Kinematics, _driver_base, _q_text
 from .model import FRAME
-from .topology import grubler
+from .topology import one_dof
 
 DEFAULT_TOL = 1e-12
 CHUNK = 1 << 14          # positions per batched linear solve
@@ -300,12 +300,7 @@ class NewtonSolver:
                              hint="it is relative to the mechanism's size, e.g. 1e-12")
         self.mech = mech
         self.tol = float(tol)
-        count = grubler(mech)
-        if count.dof != 1:
-            raise MobilityError(
-                f"the mechanism has {count.dof} degrees of freedom, not 1: {count.formula()}",
-                file=mech.file, hint="check that every link, slider and actuator is listed and "
-                "that pins shared by several bodies name the same point")
+        one_dof(mech)
         self.system = Constraints(mech)
         self.groups = [_Whole(len(self.system.rows))]
         self.fixed = dict(mech.fixed)

@@ -133,14 +133,19 @@ def grubler(mech: Mechanism) -> Grubler:
     return Grubler(bodies, revolutes, prismatics)
 
 
-def analyse(mech: Mechanism) -> Topology:
+def one_dof(mech: Mechanism) -> Grubler:
+    """Grübler's count, refusing a mechanism whose mobility is not 1."""
     count = grubler(mech)
     if count.dof != 1:
         raise MobilityError(
             f"the mechanism has {count.dof} degrees of freedom, not 1: {count.formula()}",
             file=mech.file, hint="check that every link, slider and actuator is listed and "
             "that pins shared by several bodies name the same point")
-    return Topology(count, _Decomposer(mech).run())
+    return count
+
+
+def analyse(mech: Mechanism) -> Topology:
+    return Topology(one_dof(mech), _Decomposer(mech).run())
 
 
 class _Decomposer:

@@ -90,7 +90,7 @@ def _check_key(mech, key) -> list[Outcome]:
     result = mech.solve(names=names)
     out = []
     for entry in key.entries:
-        shown = max(entry.decimals, 1) if entry.value is None else entry.decimals
+        shown = max(entry.decimals, 1) if entry.value is None or entry.wrong else entry.decimals
         if _is_point(mech, entry):
             computed = [float(result.values["x" + entry.name]), float(result.values["y" + entry.name])]
             ok = entry.value is not None and all(

@@ -15,7 +15,7 @@ import numpy as np
 
 from .errors import LinkcliError
 from .loading import build
-from .parsing import split_rate
+from .model import split_rate
 from .yamlsource import load_file
 
 ROUND_SLACK = 1e-9

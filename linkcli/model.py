@@ -171,3 +171,12 @@ class Mechanism:
         """
         from .results import evaluate
         return evaluate(self, q, qdot, qddot, names=names, method=method, tol=tol)
+
+
+def split_rate(name: str):
+    """'phi1ddot' -> ('phi1', 2); 'phi1dot' -> ('phi1', 1); 'phi1' -> ('phi1', 0)."""
+    if name.endswith("ddot") and len(name) > 4:
+        return name[:-4], 2
+    if name.endswith("dot") and len(name) > 3:
+        return name[:-3], 1
+    return name, 0

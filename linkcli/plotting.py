@@ -20,7 +20,7 @@ import numpy as np
 
 from .errors import InputError
 from .model import FRAME
-from .parsing import split_rate
+from .model import split_rate
 
 IMAGE_FORMATS = ("png", "svg", "pdf")
 MAX_STEPS = 100_000

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .errors import InputError, SolveError
-from .parsing import split_rate
+from .model import split_rate
 from .statics import unknown_load
 from .units import ANGLE, FORCE, LENGTH, TORQUE
 

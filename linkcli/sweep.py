@@ -22,7 +22,7 @@ import numpy as np
 
 from .errors import AssemblyError, InputError
 from .kinematics import SINGULAR, Kinematics
-from .parsing import split_rate
+from .model import split_rate
 from .results import collect, needed_orders, report_names, solver_for
 
 MAX_POSITIONS = 10 ** 7

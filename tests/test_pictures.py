@@ -12,6 +12,7 @@ import linkcli  # noqa: E402
 from linkcli import plotting  # noqa: E402
 from linkcli.cli import main  # noqa: E402
 from linkcli.errors import InputError  # noqa: E402
+from linkcli.scene import polygon_vectors  # noqa: E402
 
 from conftest import MECHANISMS  # noqa: E402
 
@@ -125,7 +126,7 @@ def test_draw_dynamics_examples(tmp_path):
 
 def test_polygon_vectors_follow_the_exam_convention():
     mech = linkcli.load(LIFT)
-    vectors = [(label, tail, head) for label, _, tail, head in plotting.polygon_vectors(mech)]
+    vectors = [(label, tail, head) for label, _, tail, head in polygon_vectors(mech)]
     assert vectors == [("z1", "A", "B"), ("z2", "B", "C"), ("z3", "B", "D"), ("z4", "D", "E")]
     bare = linkcli.loads(CRANK_SLIDER.replace(
         "quantities: {alpha: {angle: [O, A]}, beta: {angle: [A, B]}, c: {x: B}}",
@@ -133,7 +134,7 @@ def test_polygon_vectors_follow_the_exam_convention():
         .replace("velocity: [alphadot, betadot, cdot]", "velocity: [cdot]")
         .replace("acceleration: [alphaddot, betaddot, cddot]", "acceleration: [cddot]"))
     # alphabetical: the crank OA gives the vector from A to O
-    assert [(t, h) for _, _, t, h in plotting.polygon_vectors(bare)] == [("A", "O"), ("A", "B")]
+    assert [(t, h) for _, _, t, h in polygon_vectors(bare)] == [("A", "O"), ("A", "B")]
 
 
 def test_animate_gif_frames(tmp_path, crank_slider):

@@ -111,7 +111,7 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions):
     decimals = mech.report.get("decimals", 1) if decimals is None else decimals
     text = render(mech.solve(method=method, tol=_tol(tol)), form, decimals, lang)
     if reactions:
-        from .reactions import append_report
+        from .reaction_table import append_report
         text = append_report(text, mech, form, decimals)
     _emit(text, output)
 

@@ -31,7 +31,7 @@ def explain(mech) -> str:
     if any(b.kind == "block" and b.guide.carrier != FRAME for b in mech.bodies.values()):
         lines.append("  (sliders on moving guides add Coriolis terms to the accelerations)")
     if mech.extras.get("dynamics") is not None:
-        from .reactions import balance_lines
+        from .balance import balance_lines
         lines += [""] + balance_lines(mech)
     else:
         lines += ["", "Statics by virtual work: sum of load powers = 0"] + _statics_terms(mech)

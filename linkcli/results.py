@@ -126,7 +126,7 @@ def _loads(mech, solver, kin, names):
     unknown = mech.unknown_load()
     extra = 0.0
     if mech.extras.get("dynamics") is not None:   # inertia, gravity, friction (d'Alembert)
-        from .reactions import dynamic_power
+        from .inverse_dynamics import dynamic_power
         extra = dynamic_power(mech, kin, unit_kin)
     values[unknown.name] = unknown_load(mech, kin.pos, unit_kin.vel, extra_power=extra)
     return values

@@ -189,33 +189,52 @@ class Solver:
     # failures ------------------------------------------------------------------
     def check(self, kin: Kinematics, velocities: bool):
         """Raise when a group cannot be assembled or (for rates) is singular."""
-        q_unit, q_factor = self.mech.units.display(_driver_base(self.mech), 0)
-        l_unit, l_factor = self.mech.units.display("length", 0)
         for index, short in kin.short.items():
             bad = np.broadcast_to(short > 0, kin.q.shape) if np.ndim(short) else short > 0
             if np.any(bad):
-                group = self.groups[index]
                 worst = float(np.max(np.where(bad, short, 0.0)))
-                where = _q_text(kin.q, bad, q_factor, q_unit)
-                amount = "are parallel" if not np.isfinite(worst) else \
-                    f"fall short by {worst / l_factor:.4g} {l_unit}"
-                raise AssemblyError(
-                    f"cannot assemble {group.describe()} {where}: the links {amount}",
-                    file=self.mech.file, group=group.describe(), q=kin.q, shortfall=worst,
-                    hint="check the lengths and the driver value")
+                reason = "the links are parallel" if not np.isfinite(worst) else \
+                    f"the links fall short by {length_text(self.mech, worst)}"
+                raise assembly_error(self.mech, self.groups[index], kin.q, bad, worst, reason)
         if not velocities:
             return
         for index, measure in kin.measure.items():
             bad = measure < SINGULAR
             if np.any(bad):
-                group = self.groups[index]
-                where = _q_text(kin.q, np.broadcast_to(bad, kin.q.shape), q_factor, q_unit)
-                raise SingularError(
-                    f"singular position (toggle or dead point) of {group.describe()} {where}: "
-                    f"conditioning {float(np.min(measure)):.2e} (sine of the angle between its "
-                    "constraint directions); velocities are undefined there",
-                    file=self.mech.file, group=group.describe(), q=kin.q,
-                    measure=float(np.min(measure)), hint="move the driver away from the toggle")
+                raise singular_error(self.mech, self.groups[index], kin.q,
+                                     np.broadcast_to(bad, kin.q.shape), measure,
+                                     "sine of the angle between its constraint directions")
+
+
+def assembly_error(mech, group, q, bad, worst, reason) -> AssemblyError:
+    """The error of ``group`` that cannot be assembled at the driver values ``bad``."""
+    return AssemblyError(
+        f"cannot assemble {group.describe()} {where_text(mech, q, bad)}: {reason}",
+        file=mech.file, group=group.describe(), q=q, shortfall=worst,
+        hint="check the lengths and the driver value")
+
+
+def singular_error(mech, group, q, bad, measure, meaning) -> SingularError:
+    """The error of ``group`` singular at the driver values ``bad``; ``meaning`` says what
+    its conditioning ``measure`` is."""
+    least = float(np.min(measure))
+    return SingularError(
+        f"singular position (toggle or dead point) of {group.describe()} "
+        f"{where_text(mech, q, bad)}: conditioning {least:.2e} ({meaning}); velocities are "
+        "undefined there", file=mech.file, group=group.describe(), q=q, measure=least,
+        hint="move the driver away from the toggle")
+
+
+def length_text(mech, value) -> str:
+    """A length (m) in the file's display unit."""
+    unit, factor = mech.units.display("length", 0)
+    return f"{value / factor:.4g} {unit}"
+
+
+def where_text(mech, q, bad) -> str:
+    """'at q = ...' or 'for q in [...]': the driver values ``bad`` in display units."""
+    unit, factor = mech.units.display(_driver_base(mech), 0)
+    return _q_text(q, bad, factor, unit)
 
 
 def _driver_base(mech) -> str:

@@ -175,3 +175,18 @@ def shipped():
             continue
         out.append(path)
     return out
+
+
+# the seed-000 crank-slider (OA = 1 m, AB = sqrt(2) m, slider B on the x axis) without
+# title, loads and report: tests add their own
+SEED000_CRANK_SLIDER = """units: {length: m, angle: deg, angular_rate: rad/s, force: N, torque: Nm}
+params: {a: 1, b: sqrt(2)}
+frame: {O: [0, 0]}
+points: {A: [0.7, 0.7], B: [1.9, 0]}
+links:
+  OA: {points: [O, A], length: a}
+  AB: {points: [A, B], length: b}
+sliders:
+  B: {point: B, guide: {y: 0}}
+driver: {angle: [O, A], value: 45, rate: 0.5, accel: 1}
+"""

@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 import linkcli
+from closure import SEED000_CRANK_SLIDER
 from linkcli import dynamics, reactions
 from linkcli.cli import main
 
@@ -327,17 +328,7 @@ def test_friction_along_a_sweep_reverses_with_the_sliding_direction():
 # --- point masses and the seed-000 crank-slider with its disc -------------------------------------
 CRANK_SLIDER = """
 title: crank-slider with a piston mass or a rolling disc at B (seed 000 geometry)
-units: {length: m, angle: deg, angular_rate: rad/s, force: N, torque: Nm}
-params: {a: 1, b: sqrt(2)}
-frame: {O: [0, 0]}
-points: {A: [0.7, 0.7], B: [1.9, 0]}
-links:
-  OA: {points: [O, A], length: a}
-  AB: {points: [A, B], length: b}
-sliders:
-  B: {point: B, guide: {y: 0}}
-driver: {angle: [O, A], value: 45, rate: 0.5, accel: 1}
-loads:
+""" + SEED000_CRANK_SLIDER + """loads:
   F: {type: force, at: B, x: -40}
   Cm: {type: driver, value: unknown}
 dynamics:

@@ -8,7 +8,8 @@ import pytest
 PIL = pytest.importorskip("PIL.Image")
 pytest.importorskip("matplotlib")
 
-import linkcli  # noqa: E402
+import linkcli
+from closure import SEED000_CRANK_SLIDER
 from linkcli import plotting  # noqa: E402
 from linkcli.cli import main  # noqa: E402
 from linkcli.errors import InputError  # noqa: E402
@@ -21,17 +22,7 @@ LIFT = os.path.join(MECHANISMS, "padova-2020-07.yaml")
 SHIPPED_CRANK_SLIDER = os.path.join(MECHANISMS, "polimi-crank-slider.yaml")
 CRANK_SLIDER = """
 title: crank-slider of seed 000 (test copy)
-units: {length: m, angle: deg, angular_rate: rad/s, force: N, torque: Nm}
-params: {a: 1, b: sqrt(2)}
-frame: {O: [0, 0]}
-points: {A: [0.7, 0.7], B: [1.9, 0]}
-links:
-  OA: {points: [O, A], length: a}
-  AB: {points: [A, B], length: b}
-sliders:
-  B: {point: B, guide: {y: 0}}
-driver: {angle: [O, A], value: 45, rate: 0.5, accel: 1}
-quantities: {alpha: {angle: [O, A]}, beta: {angle: [A, B]}, c: {x: B}}
+""" + SEED000_CRANK_SLIDER + """quantities: {alpha: {angle: [O, A]}, beta: {angle: [A, B]}, c: {x: B}}
 report:
   position: [alpha, beta, c]
   velocity: [alphadot, betadot, cdot]

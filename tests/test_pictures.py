@@ -9,7 +9,7 @@ PIL = pytest.importorskip("PIL.Image")
 pytest.importorskip("matplotlib")
 
 import linkcli
-from closure import SEED000_CRANK_SLIDER
+from closure import SEED000_CRANK_SLIDER  # noqa: E402
 from linkcli import plotting  # noqa: E402
 from linkcli.cli import main  # noqa: E402
 from linkcli.errors import InputError  # noqa: E402

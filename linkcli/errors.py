@@ -86,9 +86,3 @@ class SingularError(SolveError):
         self.group = group
         self.q = q
         self.measure = measure
-
-
-class CheckFailed(LinkcliError):
-    """Some answer-key values disagree with the solution (exit 1)."""
-
-    exit_code = 1

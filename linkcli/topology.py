@@ -28,8 +28,6 @@ class Dist:
     length: float | None
     body: str
 
-    letters = "RR"
-
 
 @dataclass(frozen=True)
 class Line:
@@ -41,8 +39,6 @@ class Line:
     value: float
     body: str
     unknown: str
-
-    letters = "PR"
 
 
 @dataclass(frozen=True)

@@ -53,9 +53,6 @@ class Units:
         """SI value of one file unit of ``kind``."""
         return KINDS[kind][self.names[kind]]
 
-    def to_si(self, value, kind: str):
-        return value * self.factor(kind)
-
     # display units of derived quantities -------------------------------------
     def display(self, base: str, order: int) -> tuple[str, float]:
         """Display unit and SI factor of the ``order``-th time derivative of a

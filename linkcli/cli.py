@@ -18,6 +18,8 @@ from . import __version__
 from .errors import InputError, LinkcliError
 
 FORMATS = ["exam", "table", "json", "csv"]
+K_OPTION = click.option("--k", "k", type=int, default=None,
+                        help="Last digit of the matricola (0-9).")
 
 
 def _load(path, k):
@@ -83,7 +85,7 @@ def cli(ctx, quiet, traceback):
 
 @cli.command()
 @click.argument("file")
-@click.option("--k", "k", type=int, default=None, help="Last digit of the matricola (0-9).")
+@K_OPTION
 @click.option("--format", "form", type=click.Choice(FORMATS), default="exam", show_default=True)
 @click.option("--decimals", type=click.IntRange(0, 12), default=None,
               help="Decimals shown (default: the file's report.decimals, else 1).")
@@ -118,7 +120,7 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions):
 
 @cli.command()
 @click.argument("file")
-@click.option("--k", "k", type=int, default=None, help="Last digit of the matricola (0-9).")
+@K_OPTION
 @click.option("-o", "--output", default=None, help="Write to this file instead of stdout.")
 def explain(file, k, output):
     """Print Grübler's count, the Assur decomposition and the solving order.
@@ -213,7 +215,7 @@ def check(paths, verbose):
               help="Driver values FROM to TO (the file's units) in STEPS intervals.")
 @click.option("--y", "names", multiple=True, required=True, metavar="NAME",
               help="A quantity of the report (repeat for more panels), e.g. --y c --y cdot.")
-@click.option("--k", "k", type=int, default=None, help="Last digit of the matricola (0-9).")
+@K_OPTION
 @click.option("-o", "--output", required=True, help="Picture to write (.png, .svg or .pdf).")
 def plot(file, sweep, names, k, output):
     """Plot quantities of FILE against the driver over a sweep.
@@ -229,7 +231,7 @@ def plot(file, sweep, names, k, output):
 
 @cli.command()
 @click.argument("file")
-@click.option("--k", "k", type=int, default=None, help="Last digit of the matricola (0-9).")
+@K_OPTION
 @click.option("-o", "--output", required=True, help="Picture to write (.png, .svg or .pdf).")
 def draw(file, k, output):
     """Draw FILE at its driver value: links, sliders, pivots, the vector polygon z_i, loads.
@@ -247,7 +249,7 @@ def draw(file, k, output):
 @click.option("--sweep", default=None, metavar="FROM:TO:STEPS",
               help="Driver values (the file's units); default a full turn in 72 frames.")
 @click.option("--fps", type=click.IntRange(1, 60), default=12, show_default=True)
-@click.option("--k", "k", type=int, default=None, help="Last digit of the matricola (0-9).")
+@K_OPTION
 @click.option("-o", "--output", required=True, help="Animated GIF to write.")
 def animate(file, sweep, fps, k, output):
     """Animate the motion of FILE over a sweep of the driver (GIF).
@@ -369,7 +371,7 @@ def _tol(tol):
 @click.option("--method", type=click.Choice(["closed", "newton"]), default="closed",
               show_default=True)
 @click.option("--tol", type=float, default=None, help="Newton's relative tolerance.")
-@click.option("--k", "k", type=int, default=None, help="Last digit of the matricola (0-9).")
+@K_OPTION
 @click.option("-o", "--output", default=None, help="Write to this file instead of stdout.")
 def sweep(file, start, stop, steps, step, form, every, names, decimals, method, tol, k, output):
     """Solve FILE over a range of driver values, one row per value.

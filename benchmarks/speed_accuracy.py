@@ -44,9 +44,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.dirname(HERE))
 
 import linkcli  # noqa: E402
-from linkcli.kinematics import Kinematics  # noqa: E402
-from linkcli.newton import Constraints, newton_solver  # noqa: E402
-from linkcli.results import collect  # noqa: E402
+from linkcli.kinematics.closed_form import Kinematics  # noqa: E402
+from linkcli.kinematics.newton import Constraints  # noqa: E402
+from linkcli.answers.quantities import collect  # noqa: E402
 
 OUT = os.path.join(HERE, "out")
 SIZES = (360, 10 ** 5, 10 ** 6)
@@ -259,7 +259,7 @@ def scipy_values(case, q, how):
     """Positions per driver value by scipy (warm-started), rates by central differences."""
     from scipy import optimize
     system = Constraints(case.mech)
-    x = newton_solver(case.mech).x0.copy()          # the file's configuration, to start
+    x = solver_for(case.mech, "newton").x0.copy()          # the file's configuration, to start
     h = 1e-5 * case.q_scale
 
     def solve_one(qv, start):

@@ -5,32 +5,40 @@
     >>> result = mech.solve()
     >>> round(result.values["phi1"], 1)
     28.9
+
+The package is layered; each folder may import only the layers below it
+(``docs/architecture.md``):
+
+    errors                  the exception types (every layer)
+    model/                  plain typed data: the mechanism, units, masses and elements
+    input/                  YAML text -> validated model
+    kinematics/             topology, Assur groups, closed-form and Newton solvers
+    forces/                 statics, dynamics, reactions, balance
+    answers/                quantities, sweeps, formats, check, batch, explain, validate
+    pictures/               drawings, plots, animations (matplotlib, imported lazily)
+    api                     the Python facade: load() -> Linkage.solve()
+    cli                     the command line
+
+Importing ``linkcli`` imports only the error types; ``load`` pulls the rest in.
 """
 from __future__ import annotations
 
 __version__ = "0.1.0"
 
-from .errors import LinkcliError  # noqa: E402
+from linkcli.errors import LinkcliError  # noqa: E402
 
 
 def load(path: str, k: int | None = None):
-    """Load and validate the mechanism file ``path`` for matricola digit ``k``.
-
-    ``k`` overrides the file's default; ``path`` '-' reads standard input.
-    """
-    from .loading import build
-    from .yamlsource import load_file
-    try:
-        return build(load_file(path), k)
-    except LinkcliError as exc:
-        raise exc.located(path)
+    """Load and validate the mechanism file ``path`` for matricola digit ``k``
+    (a :class:`linkcli.api.Linkage`); ``path`` '-' reads standard input."""
+    from linkcli.api import load as _load
+    return _load(path, k)
 
 
 def loads(text: str, k: int | None = None, name: str = "<text>"):
     """Like :func:`load`, from YAML text."""
-    from .loading import build
-    from .yamlsource import load_text
-    return build(load_text(text, name), k)
+    from linkcli.api import loads as _loads
+    return _loads(text, k, name)
 
 
 __all__ = ["load", "loads", "LinkcliError", "__version__"]

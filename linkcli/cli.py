@@ -14,8 +14,8 @@ import warnings
 
 import click
 
-from . import __version__
-from .errors import InputError, LinkcliError
+from linkcli import __version__
+from linkcli.errors import InputError, LinkcliError
 
 FORMATS = ["exam", "table", "json", "csv"]
 K_OPTION = click.option("--k", "k", type=int, default=None,
@@ -23,8 +23,9 @@ K_OPTION = click.option("--k", "k", type=int, default=None,
 
 
 def _load(path, k):
-    from . import load
-    return load(path, k)
+    """The validated model of ``path`` for digit ``k``."""
+    from linkcli.api import load
+    return load(path, k).model
 
 
 def _style(text: str, **style) -> str:
@@ -108,12 +109,13 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions):
       linkcli solve mechanisms/padova-2022-09.yaml --format json
       linkcli solve mechanisms/fourbar-inverse-dynamics.yaml --reactions
     """
-    from .report import render
+    from linkcli.answers.formats import render
     mech = _load(file, k)
     decimals = mech.report.get("decimals", 1) if decimals is None else decimals
-    text = render(mech.solve(method=method, tol=_tol(tol)), form, decimals, lang)
+    from linkcli.answers.quantities import evaluate
+    text = render(evaluate(mech, method=method, tol=_tol(tol)), form, decimals, lang)
     if reactions:
-        from .reaction_table import append_report
+        from linkcli.answers.reaction_table import append_report
         text = append_report(text, mech, form, decimals)
     _emit(text, output)
 
@@ -129,7 +131,7 @@ def explain(file, k, output):
     Example:
       linkcli explain mechanisms/padova-2020-07.yaml
     """
-    from .explain import explain as text
+    from linkcli.answers.explain import explain as text
     _emit(text(_load(file, k)), output)
 
 
@@ -150,9 +152,9 @@ def batch(file, ks, form, decimals, output):
       linkcli batch mechanisms/padova-2020-02.yaml --k 0-9
       linkcli batch mechanisms/padova-2020-01.yaml --k 1,3,5 --format csv
     """
-    from . import batch as batch_mod
-    from .yamlsource import load_file
-    from .report import fmt
+    from linkcli.answers import batch as batch_mod
+    from linkcli.input.source import load_file
+    from linkcli.answers.formats import fmt
     digits = batch_mod.parse_k(ks)
     try:
         doc = load_file(file)
@@ -191,7 +193,7 @@ def check(paths, verbose):
     Example:
       linkcli check mechanisms/
     """
-    from .check import check_file, collect, summary_lines
+    from linkcli.answers.check import check_file, collect, summary_lines
     files = collect(paths or ["mechanisms"])
     if not files:
         raise InputError("no mechanism files found", key="PATHS",
@@ -225,7 +227,7 @@ def plot(file, sweep, names, k, output):
       linkcli plot mechanisms/polimi-crank-slider.yaml --sweep 0:360:360 --y c --y beta -o pos.png
       linkcli plot mechanisms/fourbar-inverse-dynamics.yaml --sweep 0:360:360 --y Mm -o mm.png
     """
-    from .plotting import plot as make
+    from linkcli.pictures.plotting import plot as make
     make(_load(file, k), sweep, list(names), output)
 
 
@@ -240,7 +242,7 @@ def draw(file, k, output):
     Example:
       linkcli draw mechanisms/padova-2020-07.yaml -o mechanism.png
     """
-    from .plotting import draw as make
+    from linkcli.pictures.plotting import draw as make
     make(_load(file, k), output)
 
 
@@ -259,7 +261,7 @@ def animate(file, sweep, fps, k, output):
       linkcli animate mechanisms/polimi-crank-slider.yaml -o motion.gif
       linkcli animate mechanisms/padova-2020-07.yaml --sweep 120:140:20 -o lift.gif
     """
-    from .plotting import animate as make
+    from linkcli.pictures.plotting import animate as make
     make(_load(file, k), output, sweep, fps)
 
 
@@ -283,7 +285,7 @@ def validate(files, k):
       linkcli validate mechanisms/*.yaml
       linkcli validate - < my-exam.yaml
     """
-    from .validate import validate_file
+    from linkcli.answers.validate import validate_file
     worst = 0
     for path in files:
         outcome = validate_file(path, k)
@@ -318,7 +320,7 @@ def schema(output):
       linkcli schema
     """
     from importlib.resources import files
-    _emit(files("linkcli").joinpath("schema.json").read_text(encoding="utf-8").rstrip("\n"),
+    _emit(files("linkcli.input").joinpath("schema.json").read_text(encoding="utf-8").rstrip("\n"),
           output)
 
 
@@ -337,7 +339,7 @@ def init(path, force):
       linkcli init - | less
     """
     from importlib.resources import files
-    text = files("linkcli").joinpath("templates", "mechanism.yaml").read_text(encoding="utf-8")
+    text = files("linkcli.input").joinpath("templates", "mechanism.yaml").read_text(encoding="utf-8")
     if path == "-":
         click.echo(text, nl=False)
         return
@@ -385,7 +387,7 @@ def sweep(file, start, stop, steps, step, form, every, names, decimals, method, 
       linkcli sweep mechanisms/padova-2021-02-dispari.yaml --from 0 --to 360 --steps 360
       linkcli sweep mechanisms/padova-2020-07.yaml --from 100 --to 160 --step 5 --format table
     """
-    from . import sweep as sweep_mod
+    from linkcli.answers import sweep as sweep_mod
     mech = _load(file, k)
     q = sweep_mod.driver_values(start, stop, steps, step)
     chosen = [n.strip() for n in names.split(",") if n.strip()] if names else None

@@ -8,7 +8,7 @@ import os
 import numpy as np
 
 import linkcli
-from linkcli.model import FRAME
+from linkcli.model.mechanism import FRAME
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "data")

@@ -11,11 +11,11 @@ import os
 import yaml
 from hypothesis import strategies as st
 
-from linkcli.yamlsource import load_file
+from linkcli.input.source import load_file
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SHIPPED = sorted(glob.glob(os.path.join(ROOT, "mechanisms", "*.yaml")))
-TEMPLATE = os.path.join(ROOT, "linkcli", "templates", "mechanism.yaml")
+TEMPLATE = os.path.join(ROOT, "linkcli", "input", "templates", "mechanism.yaml")
 EXTRA = sorted(glob.glob(os.path.join(ROOT, "tests", "data", "*.yaml"))) + [TEMPLATE]
 
 SPECIAL_NUMBERS = [0, -0.0, 1, -1, 0.5, -2.5, 1e-3, 360, -720, 1e6, 2 ** 53 + 1,

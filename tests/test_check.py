@@ -6,9 +6,9 @@ import os
 import pytest
 
 from conftest import MECHANISMS
-from linkcli.check import agrees
+from linkcli.answers.check import agrees
 from linkcli.cli import main
-from linkcli.yamlsource import load_file
+from linkcli.input.source import load_file
 
 EXAM = os.path.join(MECHANISMS, "padova-2020-02.yaml")
 

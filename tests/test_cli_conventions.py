@@ -191,7 +191,7 @@ def test_init_writes_a_template_that_validates_and_solves(tmp_path):
 def test_schema_prints_the_packaged_schema():
     code, out, _ = run(["schema"])
     assert code == 0
-    packaged = json.load(open(os.path.join(ROOT, "linkcli", "schema.json"), encoding="utf-8"))
+    packaged = json.load(open(os.path.join(ROOT, "linkcli", "input", "schema.json"), encoding="utf-8"))
     assert json.loads(out) == packaged
 
 

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 import linkcli
-from linkcli.kinematics import residuals
-from linkcli.topology import Coord, Dist, Line
+from linkcli.kinematics.closed_form import residuals
+from linkcli.kinematics.topology import Coord, Dist, Line
 
 from closure import (CASE_IDS, CASES, assembled, closure_errors, load_case, q_factor, shipped,
                      size, sweep, variant)

@@ -18,7 +18,8 @@ import pytest
 
 import linkcli
 from closure import SEED000_CRANK_SLIDER
-from linkcli import dynamics, reactions
+from linkcli.forces import balance as power_balance, joint_forces, motion
+from linkcli.kinematics.solvers import state
 from linkcli.cli import main
 
 from conftest import MECHANISMS
@@ -163,7 +164,7 @@ def test_fourbar_units_do_not_change_the_torque():
 # --- energy method ------------------------------------------------------------------------
 def _energy_rate_by_differences(mech, q0, h=1e-4):
     """dE/dt by Richardson-extrapolated central differences of E along q(t)."""
-    dyn = dynamics.model(mech)
+    dyn = mech.dynamics
     d = mech.driver
     solver = mech.solver()
 
@@ -171,7 +172,7 @@ def _energy_rate_by_differences(mech, q0, h=1e-4):
         q = q0 + d.rate * t + 0.5 * d.accel * t * t
         kin = solver.positions(np.asarray(q))
         solver.velocities(kin, d.rate + d.accel * t)
-        return dynamics.kinetic_energy(mech, dyn, kin.pos, kin.vel)
+        return motion.kinetic_energy(mech, dyn, kin.pos, kin.vel)
 
     def central(step):
         return (energy(step) - energy(-step)) / (2 * step)
@@ -181,8 +182,8 @@ def _energy_rate_by_differences(mech, q0, h=1e-4):
 @pytest.mark.parametrize("path", [FOURBAR, DISC, FRICTION], ids=os.path.basename)
 def test_energy_rate_matches_differences_of_the_kinetic_energy(path):
     mech = linkcli.load(path)
-    kin, _ = reactions.kinematics(mech)
-    exact = float(dynamics.energy_rate(mech, dynamics.model(mech), kin))
+    kin, _ = state(mech)
+    exact = float(motion.energy_rate(mech, mech.dynamics, kin))
     numeric = float(_energy_rate_by_differences(mech, mech.driver.value))
     assert abs(exact) > 1.0
     assert abs(exact - numeric) < 1e-7 * abs(exact)
@@ -192,7 +193,7 @@ def test_energy_rate_matches_differences_of_the_kinetic_energy(path):
 def test_power_balance_closes(path):
     """dE/dt = W_motor - W_resistant - W_lost with dE/dt from differences of E."""
     mech = linkcli.load(path)
-    terms = reactions.balance(mech)
+    terms = power_balance.balance(mech)
     numeric = float(_energy_rate_by_differences(mech, mech.driver.value))
     balance = terms["motor"] - terms["resistant"] - terms["lost"]
     scale = max(abs(terms["motor"]), abs(terms["resistant"]), abs(terms["lost"]))
@@ -240,21 +241,21 @@ def test_rolling_disc_force_equals_the_seed_formula():
 
 def test_rolling_disc_spin_follows_its_centre():
     mech = linkcli.load(DISC)
-    kin, unit = reactions.kinematics(mech)
-    disc = dynamics.model(mech).discs["disc"]
-    omega, alpha = dynamics.disc_spin(mech, disc, kin.pos, kin.vel, kin.acc)
+    kin, unit = state(mech)
+    disc = mech.dynamics.discs["disc"]
+    omega, alpha = motion.disc_spin(mech, disc, kin.pos, kin.vel, kin.acc)
     vd, ad = kin.vel["D"].real, kin.acc["D"].real
     assert omega == pytest.approx(-vd / 0.08, rel=1e-14)     # rolling to the right: clockwise
     assert alpha == pytest.approx(-ad / 0.08, rel=1e-14)
     right = _variant(DISC, [("side: left", "side: right")])
-    omega_r, _ = dynamics.disc_spin(right, dynamics.model(right).discs["disc"], kin.pos, kin.vel)
+    omega_r, _ = motion.disc_spin(right, right.dynamics.discs["disc"], kin.pos, kin.vel)
     assert omega_r == pytest.approx(-omega, rel=1e-14)
 
 
 # --- seed 001, 7 February 2001: Coulomb friction at the slide -----------------------------
 def _seed_friction(mech, mu, mass=10.0, m_g=3.0, j_g=0.0625, force=-200.0):
     """The seed's free-body path: slide (N, F_CD), slotted link about B (P), crank (C)."""
-    kin, _ = reactions.kinematics(mech)
+    kin, _ = state(mech)
     p, v, a = kin.pos, kin.vel, kin.acc
 
     def cross(x, y):
@@ -288,8 +289,8 @@ def test_friction_torque_follows_the_seed_free_body_path(mu):
     got = float(mech.solve(names=["Cm"]).values["Cm"])
     expected, normal, _, _ = _seed_friction(mech, mu)
     assert abs(got - expected) < 1e-9 * abs(expected)
-    kin, _ = reactions.kinematics(mech)
-    r = reactions.solve(mech, kin)
+    kin, _ = state(mech)
+    r = joint_forces.solve(mech, kin)
     assert float(r.pairs["slide"].normal) == pytest.approx(normal, rel=1e-9)
 
 
@@ -298,8 +299,8 @@ def test_friction_is_a_loss_that_raises_the_driving_torque():
     without = _variant(FRICTION, [("    slide: 0.3 ", "    slide: 0 ")])
     cm_f = float(with_friction.solve(names=["Cm"]).values["Cm"])
     cm_0 = float(without.solve(names=["Cm"]).values["Cm"])
-    kin, _ = reactions.kinematics(with_friction)
-    r = reactions.solve(with_friction, kin)
+    kin, _ = state(with_friction)
+    r = joint_forces.solve(with_friction, kin)
     normal, t = float(r.pairs["slide"].normal), float(r.pairs["slide"].friction)
     vd = kin.vel["D"].real
     assert abs(t) == pytest.approx(0.3 * abs(normal), rel=1e-12)
@@ -314,8 +315,8 @@ def test_friction_is_a_loss_that_raises_the_driving_torque():
 def test_friction_along_a_sweep_reverses_with_the_sliding_direction():
     mech = linkcli.load(FRICTION)
     q = np.linspace(0, 350, 36)
-    kin, _ = reactions.kinematics(mech, np.radians(q))
-    r = reactions.solve(mech, kin)
+    kin, _ = state(mech, np.radians(q))
+    r = joint_forces.solve(mech, kin)
     t, n = r.pairs["slide"].friction, r.pairs["slide"].normal
     v = kin.vel["D"].real
     assert np.any(v > 0) and np.any(v < 0)
@@ -436,8 +437,8 @@ def test_known_torque_on_a_rolling_disc_works_through_its_spin():
     omega_disc = -cd / 0.2
     expected = (5.0 * cdd * cd + 40.0 * cd - 7.0 * omega_disc) / 0.5
     assert np.max(np.abs(got - expected)) < 1e-9 * np.max(np.abs(expected))
-    kin, _ = reactions.kinematics(mech, np.radians(q))
-    assert np.allclose(reactions.solve(mech, kin).unknown, got, rtol=1e-9,
+    kin, _ = state(mech, np.radians(q))
+    assert np.allclose(joint_forces.solve(mech, kin).unknown, got, rtol=1e-9,
                        atol=1e-9 * np.max(np.abs(got)))
 
 
@@ -477,12 +478,12 @@ def massive(file, anchor, section):
 def test_masses_on_actuators_ternary_links_and_blocks_energy_method(case):
     mech = massive(*case)
     assert mech.driver.accel != 0
-    kin, _ = reactions.kinematics(mech)
-    exact = float(dynamics.energy_rate(mech, dynamics.model(mech), kin))
+    kin, _ = state(mech)
+    exact = float(motion.energy_rate(mech, mech.dynamics, kin))
     numeric = float(_energy_rate_by_differences(mech, mech.driver.value, h=1e-5))
     assert abs(exact) > 1e-3
     assert abs(exact - numeric) < 1e-6 * abs(exact)
-    terms = reactions.balance(mech)
+    terms = power_balance.balance(mech)
     assert terms["motor"] - terms["resistant"] - terms["lost"] == pytest.approx(exact, rel=1e-9)
     static = linkcli.load(os.path.join(MECHANISMS, case[0]))
     assert abs(float(mech.solve(names=["Q"]).values["Q"]) -

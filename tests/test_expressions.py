@@ -6,7 +6,7 @@ import pytest
 
 import linkcli
 from linkcli.errors import ExpressionError, InputError
-from linkcli.expressions import evaluate
+from linkcli.input.expressions import evaluate
 
 
 @pytest.mark.parametrize("text, names, expected", [

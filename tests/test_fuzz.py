@@ -27,7 +27,7 @@ from hypothesis import strategies as st
 
 from linkcli.cli import main
 from linkcli.errors import ExpressionError
-from linkcli.expressions import MAX_MAGNITUDE, MIN_MAGNITUDE, evaluate
+from linkcli.input.expressions import MAX_MAGNITUDE, MIN_MAGNITUDE, evaluate
 
 from mutations import (EXTRA, SHIPPED, TEMPLATE, data_of, expressions, mutated, numbers,
                        to_yaml)

@@ -9,8 +9,8 @@ import pytest
 import linkcli
 from linkcli.cli import main
 from linkcli.errors import AssemblyError, StructureError
-from linkcli.newton import NewtonSolver
-from linkcli.results import report_names
+from linkcli.kinematics.newton import NewtonSolver
+from linkcli.answers.quantities import report_names
 
 from conftest import MECHANISMS
 

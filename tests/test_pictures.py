@@ -10,10 +10,10 @@ pytest.importorskip("matplotlib")
 
 import linkcli
 from closure import SEED000_CRANK_SLIDER  # noqa: E402
-from linkcli import plotting  # noqa: E402
+from linkcli.pictures import plotting  # noqa: E402
 from linkcli.cli import main  # noqa: E402
 from linkcli.errors import InputError  # noqa: E402
-from linkcli.scene import polygon_vectors  # noqa: E402
+from linkcli.pictures.scene import polygon_vectors  # noqa: E402
 
 from conftest import MECHANISMS  # noqa: E402
 

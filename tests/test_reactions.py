@@ -17,11 +17,12 @@ import numpy as np
 import pytest
 
 import linkcli
-from linkcli import dynamics, reactions
+from linkcli.forces import balance as power_balance, joint_forces, motion
+from linkcli.kinematics.solvers import state
 from linkcli.cli import main
 from linkcli.errors import StructureError
-from linkcli.model import FRAME
-from linkcli.units import FORCE, TORQUE
+from linkcli.model.mechanism import FRAME
+from linkcli.model.units import FORCE, TORQUE
 
 from closure import CASE_IDS, CASES, load_case, q_factor
 from conftest import MECHANISMS
@@ -77,7 +78,7 @@ def _load_actions(mech, kin, load, value):
 
 def residuals(mech, kin, r):
     """Largest force and moment imbalance of any body or pin, relative to the forces' size."""
-    dyn = dynamics.model(mech)
+    dyn = mech.dynamics
     force = {}
     moment = {}
     scale = [1e-300]
@@ -101,11 +102,11 @@ def residuals(mech, kin, r):
             add(target, f, at, m)
     if dyn is not None:
         for mb in dyn.bodies.values():
-            g, _, a = dynamics.rigid_point(mech, mb.body, mb.center, kin.pos, kin.vel, kin.acc)
-            _, alpha = dynamics.rotation(mech, mb.body, kin.pos, kin.vel, kin.acc)
+            g, _, a = motion.rigid_point(mech, mb.body, mb.center, kin.pos, kin.vel, kin.acc)
+            _, alpha = motion.rotation(mech, mb.body, kin.pos, kin.vel, kin.acc)
             add(mb.body, mb.mass * (dyn.gravity - a), g, -mb.inertia * alpha)
         for disc in dyn.discs.values():
-            _, alpha = dynamics.disc_spin(mech, disc, kin.pos, kin.vel, kin.acc)
+            _, alpha = motion.disc_spin(mech, disc, kin.pos, kin.vel, kin.acc)
             add(disc.slider, disc.mass * (dyn.gravity - kin.acc.get(disc.center, 0)),
                 kin.pos[disc.center], -disc.inertia * alpha)
         for p, m in dyn.masses.items():
@@ -130,8 +131,8 @@ def _sweep(mech, span, n):
 
 
 def _check(mech, q_si):
-    kin, _ = reactions.kinematics(mech, q_si)
-    r = reactions.solve(mech, kin)
+    kin, _ = state(mech, q_si)
+    r = joint_forces.solve(mech, kin)
     force_err, moment_err, size = residuals(mech, kin, r)
     assert size > 0
     assert force_err < 1e-9 and moment_err < 1e-9, (force_err, moment_err)
@@ -169,9 +170,9 @@ def test_two_force_members_and_frictionless_guides():
             mech.solver()
         except StructureError:
             continue
-        dyn = dynamics.model(mech)
-        kin, _ = reactions.kinematics(mech)
-        r = reactions.solve(mech, kin)
+        dyn = mech.dynamics
+        kin, _ = state(mech)
+        r = joint_forces.solve(mech, kin)
         size = max(abs(complex(np.asarray(f))) for f in r.pins.values())
         torqued = {ld.target for ld in mech.loads.values() if ld.kind == "torque"}
         d = mech.driver
@@ -200,10 +201,10 @@ def test_fourbar_reactions_over_a_turn_match_the_torque():
     mech = linkcli.load(FOURBAR)
     kin, r = _check(mech, np.radians(np.arange(0, 360, 10.0)))
     # the whole linkage: forces of the frame + weights = sum of m a_G (momentum balance)
-    dyn = dynamics.model(mech)
+    dyn = mech.dynamics
     ground = -(r.pins[("A0", FRAME)] + r.pins[("B0", FRAME)])
     total = ground + sum(mb.mass for mb in dyn.bodies.values()) * dyn.gravity
-    momentum = sum(mb.mass * dynamics.rigid_point(mech, mb.body, mb.center, kin.pos, kin.vel,
+    momentum = sum(mb.mass * motion.rigid_point(mech, mb.body, mb.center, kin.pos, kin.vel,
                                                   kin.acc)[2] for mb in dyn.bodies.values())
     assert np.max(np.abs(total - momentum)) < 1e-9 * np.max(np.abs(ground))
     assert np.max(np.abs(momentum)) > 1.0
@@ -218,8 +219,8 @@ def test_rolling_disc_contact_forces():
     contact = r.pairs["D"]
     assert contact.kind == "disc"
     assert float(contact.normal) == pytest.approx(6 * 9.81, rel=1e-12)
-    disc = dynamics.model(mech).discs["disc"]
-    _, alpha = dynamics.disc_spin(mech, disc, kin.pos, kin.vel, kin.acc)
+    disc = mech.dynamics.discs["disc"]
+    _, alpha = motion.disc_spin(mech, disc, kin.pos, kin.vel, kin.acc)
     assert float(contact.friction) * 0.08 == pytest.approx(disc.inertia * float(alpha), rel=1e-9)
 
 
@@ -243,8 +244,8 @@ def test_solve_reactions_cli(capsys):
     data = json.loads(capsys.readouterr().out)
     joints = data["reactions"]["joints"]
     mech = linkcli.load(FRICTION)
-    kin, _ = reactions.kinematics(mech)
-    r = reactions.solve(mech, kin)
+    kin, _ = state(mech)
+    r = joint_forces.solve(mech, kin)
     assert joints["O on OA"]["Fx"] == pytest.approx(complex(r.pins[("O", "OA")]).real, rel=1e-12)
     slide = joints["slider slide (guide on frame)"]
     assert slide["along"] == pytest.approx(-0.3 * abs(slide["normal"]), rel=1e-12)
@@ -262,8 +263,8 @@ def test_statics_file_reactions_cli(capsys):
 def test_reactions_on_newton_kinematics_equal_the_closed_form():
     mech = linkcli.load(FRICTION)
     q = np.radians([10.0, 60.0, 200.0])
-    closed = reactions.solve(mech, reactions.kinematics(mech, q)[0])
-    newton = reactions.solve(mech, reactions.kinematics(mech, q, method="newton")[0])
+    closed = joint_forces.solve(mech, state(mech, q)[0])
+    newton = joint_forces.solve(mech, state(mech, q, method="newton")[0])
     assert np.allclose(newton.unknown, closed.unknown, rtol=1e-9, atol=0)
     for key, force in closed.pins.items():
         assert np.allclose(newton.pins[key], force, rtol=0, atol=1e-9 * np.max(np.abs(force)) +

@@ -1,4 +1,4 @@
-"""The JSON Schema (linkcli/schema.json) and the loader agree.
+"""The JSON Schema (linkcli/input/schema.json) and the loader agree.
 
 * every shipped example, test mechanism and the template validates;
 * the schema states the loader's own tables (sections, units, names, bounds);
@@ -23,14 +23,16 @@ import jsonschema
 import pytest
 from hypothesis import HealthCheck, given, seed, settings
 
-from linkcli import expressions, parsing, units
+from linkcli.input import expressions
+from linkcli.input import document as parsing
+from linkcli.model import units
 from linkcli.errors import InputError
-from linkcli.parsing import parse
-from linkcli.yamlsource import load_text, path_text
+from linkcli.input.document import build as parse
+from linkcli.input.source import load_text, path_text
 
 from mutations import EXTRA, ROOT, SHIPPED, data_of, mutated, paths, to_yaml
 
-SCHEMA_PATH = os.path.join(ROOT, "linkcli", "schema.json")
+SCHEMA_PATH = os.path.join(ROOT, "linkcli", "input", "schema.json")
 SCHEMA = json.load(open(SCHEMA_PATH, encoding="utf-8"))
 VALIDATOR = jsonschema.Draft202012Validator(SCHEMA)
 DEFS = SCHEMA["$defs"]

@@ -10,11 +10,11 @@ import numpy as np
 import pytest
 
 import linkcli
-from linkcli import dyads
+from linkcli.kinematics import dyads
 from linkcli.cli import main
 from linkcli.errors import SingularError
-from linkcli.newton import NewtonSolver
-from linkcli.sweep import sweep
+from linkcli.kinematics.newton import NewtonSolver
+from linkcli.answers.sweep import sweep
 
 EPS = np.finfo(float).eps
 

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import linkcli
-from linkcli.units import FORCE, TORQUE
+from linkcli.model.units import FORCE, TORQUE
 
 from closure import CASE_IDS, CASES, body_angle, q_factor, shipped, step, variant
 
@@ -103,7 +103,7 @@ def test_shipped_examples_statics(path):
     mech = linkcli.load(path)
     if not any(load.value is None for load in mech.loads.values()):
         pytest.skip("no statics in this file")
-    if mech.extras.get("dynamics") is not None:
+    if mech.dynamics is not None:
         pytest.skip("inertia, gravity and friction enter its unknown load (tests/test_dynamics.py)")
     q0 = mech.driver.value / q_factor(mech)
     _check_unknown(mech, np.array([q0]))

@@ -1,0 +1,55 @@
+"""Solve one exam for several matricola digits k: the class answer sheet."""
+from __future__ import annotations
+
+import numpy as np
+
+from linkcli.answers.quantities import evaluate, report_names
+from linkcli.errors import InputError
+from linkcli.input.document import build
+
+
+def parse_k(text: str) -> list[int]:
+    """'0-9' -> [0..9]; '1,3,5' -> [1, 3, 5]; ranges and lists may be mixed."""
+    ks: list[int] = []
+    for part in str(text).split(","):
+        part = part.strip()
+        try:
+            if "-" in part:
+                lo, hi = (int(x) for x in part.split("-", 1))
+                ks += list(range(lo, hi + 1)) if lo <= hi else []
+                if lo > hi:
+                    raise ValueError
+            else:
+                ks.append(int(part))
+        except ValueError:
+            raise InputError(f"cannot read k list '{text}'", key="--k",
+                             hint="use a digit, a range such as 0-9, or a list such as 1,3,5") \
+                from None
+    bad = [k for k in ks if not 0 <= k <= 9]
+    if bad:
+        raise InputError(f"k must be a digit 0-9, got {bad[0]}", key="--k")
+    return ks
+
+
+def run(doc, ks: list[int]):
+    """Return (columns, units, rows, decimals): a row per k with every report value."""
+    rows = []
+    decimals = 1
+    columns: list[str] = []
+    units: dict = {}
+    for k in ks:
+        mech = build(doc, k)
+        result = evaluate(mech, )
+        if not columns:
+            decimals = mech.report.get("decimals", 1)
+            names = report_names(mech)
+            columns = names + [f"{c}{p}" for p in result.points for c in "xy"
+                               if f"{c}{p}" not in names]
+            units = dict(result.units)
+            for p in result.points:
+                units["x" + p] = units["y" + p] = result.units[p]
+        values = dict(result.values)
+        for p, (x, y) in result.points.items():
+            values["x" + p], values["y" + p] = x, y
+        rows.append([k] + [float(np.asarray(values[c])) for c in columns])
+    return columns, units, rows, decimals

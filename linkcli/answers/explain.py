@@ -1,0 +1,48 @@
+"""The answer to an exam's Assur question: Grübler's count and the solving order."""
+from __future__ import annotations
+
+from linkcli.kinematics.solvers import solver_for
+from linkcli.model.mechanism import FRAME
+
+
+def explain(mech) -> str:
+    solver = solver_for(mech)
+    count = solver.topology.grubler
+    lines = [mech.title, "", "Grübler's count (planar)",
+             f"  bodies m = {count.m}: " + ", ".join(count.bodies),
+             f"  revolute pairs R = {count.r}: " + ", ".join(
+                 f"{p} ({'-'.join(b)})" if len(b) == 2 else f"{p} x{len(b) - 1} ({'-'.join(b)})"
+                 for p, b in count.revolutes),
+             f"  prismatic pairs P = {count.p}: " + (", ".join(
+                 f"{name} ({b1}-{b2})" for name, b1, b2 in count.prismatics) or "none"),
+             f"  {count.formula()}", "", "Decomposition and solving order"]
+    d = mech.driver
+    what = {"angle": f"angle of {d.a}->{d.b}", "length": f"length {d.a}{d.b}",
+            "x": f"x of {d.a}", "y": f"y of {d.a}"}[d.kind]
+    lines.append(f"  driver q = {what}")
+    step = 0
+    for group in solver.groups:
+        if group.kind == "place":
+            lines.append(f"       then {group.describe()}")
+            continue
+        step += 1
+        branch = f"  (branch {'+' if group.branch > 0 else '-'} as in the figure)" \
+            if group.kind in ("RRR", "RRP", "PRR", "RPR") else ""
+        lines.append(f"  {step}. {group.describe()}{branch}")
+    if any(b.kind == "block" and b.guide.carrier != FRAME for b in mech.bodies.values()):
+        lines.append("  (sliders on moving guides add Coriolis terms to the accelerations)")
+    if mech.dynamics is not None:
+        from linkcli.forces.balance import balance_lines
+        lines += [""] + balance_lines(mech)
+    else:
+        lines += ["", "Statics by virtual work: sum of load powers = 0"] + _statics_terms(mech)
+    return "\n".join(lines)
+
+
+def _statics_terms(mech) -> list:
+    terms = []
+    for load in mech.loads.values():
+        target = {"force": f"v_{load.target}", "torque": f"omega_{load.target}",
+                  "axial": f"d|{load.target}|/dt", "driver": "qdot"}[load.kind]
+        terms.append(f"{load.name} * {target}")
+    return ["  " + " + ".join(terms) + " = 0" if terms else "  (no loads)"]

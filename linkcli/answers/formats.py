@@ -1,0 +1,107 @@
+"""Format solved results: the exam answer sheet, a table, JSON or CSV."""
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+
+import numpy as np
+
+HEADINGS = {
+    "en": {"position": "Position analysis", "velocity": "Velocity analysis",
+           "acceleration": "Acceleration analysis", "statics": "Statics (virtual work)",
+           "points": "Coordinates of notable points", "driver": "Driver",
+           "dynamics": "Dynamics (virtual work with inertia and gravity)"},
+    "it": {"position": "Analisi Cinematica di POSIZIONE",
+           "velocity": "Analisi Cinematica di VELOCITA'",
+           "acceleration": "Analisi Cinematica di ACCELERAZIONE",
+           "statics": "Analisi STATICA",
+           "points": "Coordinate di punti notevoli", "driver": "Movente",
+           "dynamics": "Analisi DINAMICA"},
+}
+
+
+def fmt(value, decimals: int) -> str:
+    value = float(value)
+    if not math.isfinite(value):
+        return str(value)
+    text = f"{value:.{decimals}f}"
+    if text.startswith("-") and float(text) == 0:
+        text = text[1:]
+    return text
+
+
+def _scalar(result, name):
+    value = np.asarray(result.values[name])
+    return float(value) if value.ndim == 0 else float(value.reshape(-1)[0])
+
+
+def exam(result, decimals: int = 1, lang: str = "en") -> str:
+    mech = result.mechanism
+    words = HEADINGS[lang]
+    lines = [mech.title]
+    if mech.k is not None:
+        lines.append(f"k = {mech.k}")
+    for section in ("position", "velocity", "acceleration", "statics"):
+        names = mech.report.get(section) or []
+        if not names:
+            continue
+        dynamic = section == "statics" and mech.dynamics is not None
+        lines += ["", words["dynamics" if dynamic else section]]
+        width = max(len(n) for n in names)
+        for name in names:
+            lines.append(f"  {name:<{width}} = {fmt(_scalar(result, name), decimals):>10} "
+                         f"{result.units[name]}")
+        if section == "position" and result.points:
+            lines += ["", words["points"]]
+            for p, (x, y) in result.points.items():
+                lines.append(f"  {p} = ({fmt(np.ravel(x)[0], decimals)}, "
+                             f"{fmt(np.ravel(y)[0], decimals)}) {result.units[p]}")
+    return "\n".join(lines)
+
+
+def table(result, decimals: int = 1) -> str:
+    from tabulate import tabulate
+    rows = [(name, fmt(_scalar(result, name), decimals), result.units[name])
+            for name in result.values]
+    rows += [(p, f"({fmt(np.ravel(x)[0], decimals)}, {fmt(np.ravel(y)[0], decimals)})",
+              result.units[p]) for p, (x, y) in result.points.items()]
+    return tabulate(rows, headers=["quantity", "value", "unit"], disable_numparse=True)
+
+
+def as_dict(result) -> dict:
+    mech = result.mechanism
+    values = {}
+    for name, value in result.values.items():
+        arr = np.asarray(value, dtype=float)
+        values[name] = float(arr) if arr.ndim == 0 else arr.tolist()
+    points = {p: [np.asarray(x, float).tolist(), np.asarray(y, float).tolist()]
+              for p, (x, y) in result.points.items()}
+    return {"title": mech.title, "file": mech.file, "k": mech.k, "values": values,
+            "units": dict(result.units), "points": points}
+
+
+def to_json(result) -> str:
+    return json.dumps(as_dict(result), indent=2, allow_nan=True)
+
+
+def to_csv(result, decimals: int | None = None) -> str:
+    out = io.StringIO()
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow(["quantity", "value", "unit"])
+    for name in result.values:
+        value = _scalar(result, name)
+        writer.writerow([name, repr(value) if decimals is None else fmt(value, decimals),
+                         result.units[name]])
+    return out.getvalue()
+
+
+def render(result, form: str, decimals: int = 1, lang: str = "en") -> str:
+    if form == "exam":
+        return exam(result, decimals, lang)
+    if form == "table":
+        return table(result, decimals)
+    if form == "json":
+        return to_json(result)
+    return to_csv(result, decimals).rstrip("\n")

@@ -1,0 +1,64 @@
+"""The Python API: a loaded mechanism that solves itself by calling down the layers.
+
+    >>> import linkcli
+    >>> linkage = linkcli.load("mechanisms/padova-2020-07.yaml")
+    >>> round(linkage.solve().values["phi1"], 1)
+    28.9
+
+:class:`Linkage` holds the validated model (``linkage.model``, plain data) and
+forwards reads of the model's fields (``linkage.title``, ``linkage.report``...),
+so the model itself never imports a solver.
+"""
+from __future__ import annotations
+
+from linkcli.answers.quantities import Result, evaluate
+from linkcli.errors import LinkcliError
+from linkcli.input.document import build
+from linkcli.input.source import load_file, load_text
+from linkcli.kinematics.solvers import solver_for
+from linkcli.model.mechanism import Mechanism
+
+
+class Linkage:
+    """A mechanism file loaded for one matricola digit, ready to solve."""
+
+    def __init__(self, model: Mechanism):
+        self.model = model
+
+    def __getattr__(self, name):
+        # only reached for names Linkage does not define: the model's fields
+        return getattr(self.__dict__["model"], name)
+
+    def __repr__(self) -> str:
+        return f"Linkage({self.model.title!r}, k={self.model.k})"
+
+    def solver(self, method: str = "closed", tol: float | None = None):
+        """The kinematic solver ('closed' form of the Assur groups, or 'newton')."""
+        return solver_for(self.model, method, tol)
+
+    def solve(self, q=None, qdot=None, qddot=None, *, names=None, method="closed",
+              tol=None) -> Result:
+        """Solve at driver value(s) ``q`` (display units; default from the file).
+
+        Scalars or NumPy arrays are accepted.  Returns a :class:`Result` whose
+        ``values`` maps every report name to its value in display units.
+        ``method`` 'newton' uses Newton-Raphson on all constraint equations
+        (relative tolerance ``tol``) instead of the closed form of the groups.
+        """
+        return evaluate(self.model, q, qdot, qddot, names=names, method=method, tol=tol)
+
+
+def load(path: str, k: int | None = None) -> Linkage:
+    """Load and validate the mechanism file ``path`` for matricola digit ``k``.
+
+    ``k`` overrides the file's default; ``path`` '-' reads standard input.
+    """
+    try:
+        return Linkage(build(load_file(path), k))
+    except LinkcliError as exc:
+        raise exc.located(path)
+
+
+def loads(text: str, k: int | None = None, name: str = "<text>") -> Linkage:
+    """Like :func:`load`, from YAML text."""
+    return Linkage(build(load_text(text, name), k))

@@ -1,0 +1,211 @@
+"""Parsing of the bodies: links and rigid shapes, actuators, slider blocks and guides."""
+from __future__ import annotations
+
+import cmath
+import math
+
+from linkcli.model.mechanism import FRAME, Actuator, Body, Guide
+from linkcli.input.reader import _Skip
+
+
+class BodiesSection:
+    """``links``, ``actuators`` and ``sliders`` (a mixin of the Parser)."""
+
+    def links(self, data, units, pool, bodies):
+        links = self.mapping(self.get(data, (), "links", required=False, default={}) or {},
+                             ("links",))
+        for name, spec in links.items():
+            self.block(self.link, name, spec, units, pool, bodies)
+
+    def link(self, name, spec, units, pool, bodies):
+        path = ("links", name)
+        self.name(name, path, what="link")
+        if name == FRAME:
+            raise self.error(path, "'frame' is reserved for the fixed body")
+        spec = self.mapping(spec, path, {"points", "length", "shape", "local"}, ("points",))
+        points = spec["points"]
+        if not isinstance(points, list) or len(points) < 2:
+            raise self.error(path + ("points",), "a link needs a list of at least two points")
+        points = tuple(self.name(p, path + ("points", i), pool) for i, p in enumerate(points))
+        if len(set(points)) != len(points):
+            raise self.error(path + ("points",), "a point is listed twice")
+        given = [key for key in ("length", "shape", "local") if key in spec]
+        if len(given) != 1:
+            raise self.error(path, "give exactly one of 'length' (two points), 'shape' or 'local'")
+        if given[0] == "length":
+            if len(points) != 2:
+                raise self.error(path + ("length",), "'length' is for a link of two points; "
+                                 "use 'shape' or 'local' for three or more")
+            length = self.positive(spec["length"], path + ("length",), units)
+            local = {points[0]: 0j, points[1]: complex(length, 0)}
+        elif given[0] == "local":
+            local = self.local(spec["local"], path + ("local",), points, units)
+        else:
+            local = self.shape(spec["shape"], path + ("shape",), points, units)
+        size = max(abs(z) for z in local.values())
+        for i, a in enumerate(points):     # coincident points (relative to the body's size)
+            b = next((b for b in points[i + 1:] if abs(local[b] - local[a]) <= 1e-12 * size), None)
+            if b is not None:
+                raise self.error(path, f"points {a} and {b} of the link coincide",
+                                 hint="check its lengths and angles")
+        bodies[name] = Body(name, "link", points, local)
+
+    def local(self, spec, path, points, units) -> dict:
+        spec = self.mapping(spec, path, set(points), points)
+        local = {p: self.xy(spec[p], path + (p,), units) for p in points}
+        if abs(local[points[1]] - local[points[0]]) == 0:
+            raise self.error(path, "the first two points coincide")
+        return local
+
+    def shape(self, spec, path, points, units) -> dict:
+        """Local coordinates from the exam's description.
+
+        The first point is the origin, the second lies on +x at distance
+        ``length``; every other point is placed ``length`` from ``from`` (default
+        the first point) at ``angle`` counter-clockwise from the direction
+        first -> second, or by two ``distances`` and the ``side`` it opens to.
+        """
+        spec = self.mapping(spec, path, set(points[1:]), points[1:])
+        local = {points[0]: 0j}
+        base = self.mapping(spec[points[1]], path + (points[1],), {"length"}, ("length",))
+        local[points[1]] = complex(self.positive(base["length"], path + (points[1], "length"),
+                                                 units), 0)
+        for p in points[2:]:
+            local[p] = self.shape_point(spec[p], path + (p,), local, units)
+        return local
+
+    def shape_point(self, spec, path, local, units) -> complex:
+        spec = self.mapping(spec, path, {"length", "angle", "from", "distances", "side"})
+        if "distances" in spec:
+            dist = self.mapping(spec["distances"], path + ("distances",))
+            if len(dist) != 2:
+                raise self.error(path + ("distances",), "give distances to two placed points")
+            (p1, d1), (p2, d2) = dist.items()
+            for p in (p1, p2):
+                self.name(p, path + ("distances", p), local)
+            d1 = self.positive(d1, path + ("distances", p1), units)
+            d2 = self.positive(d2, path + ("distances", p2), units)
+            side = self.get(spec, path, "side")
+            if side not in ("left", "right"):
+                raise self.error(path + ("side",), "side is 'left' or 'right' of first -> second")
+            a, b = local[p1], local[p2]
+            base = abs(b - a)
+            along = (d1 * d1 - d2 * d2 + base * base) / (2 * base)
+            h2 = d1 * d1 - along * along
+            if h2 < 0:
+                raise self.error(path + ("distances",), "these distances do not close a triangle")
+            sign = 1 if side == "left" else -1
+            return a + (along + 1j * sign * math.sqrt(h2)) * (b - a) / base
+        length = self.positive(self.get(spec, path, "length"), path + ("length",), units)
+        angle = self.number(spec.get("angle", 0), path + ("angle",), "angle", units)
+        origin = spec.get("from")
+        start = local[next(iter(local))] if origin is None else local[
+            self.name(origin, path + ("from",), local)]
+        return start + length * cmath.exp(1j * angle)
+
+    def actuators(self, data, pool, bodies) -> dict:
+        spec = self.mapping(self.get(data, (), "actuators", required=False, default={}) or {},
+                            ("actuators",))
+        actuators = {}
+        for name, value in spec.items():
+            path = ("actuators", name)
+            try:
+                self.name(name, path, what="actuator")
+                value = self.mapping(value, path, {"points"}, ("points",))
+                a, b = self.pair(value["points"], path + ("points",), pool)
+            except _Skip:
+                continue
+            if name in bodies:
+                self.error(path, f"name '{name}' is already a link")
+                continue
+            actuators[name] = Actuator(name, a, b)
+            bodies[name + ".cylinder"] = Body(name + ".cylinder", "cylinder", (a,), {a: 0j})
+            bodies[name + ".rod"] = Body(name + ".rod", "rod", (b,), {b: 0j})
+        return actuators
+
+    def sliders(self, data, units, pool, bodies, fixed):
+        spec = self.mapping(self.get(data, (), "sliders", required=False, default={}) or {},
+                            ("sliders",))
+        for name, value in spec.items():
+            self.block(self.slider, name, value, units, pool, bodies, fixed)
+
+    def slider(self, name, value, units, pool, bodies, fixed):
+        path = ("sliders", name)
+        self.name(name, path, what="slider")
+        value = self.mapping(value, path, {"point", "guide", "carries"}, ("point", "guide"))
+        point = self.name(value["point"], path + ("point",), pool)
+        guide = self.guide(value["guide"], path + ("guide",), units, pool, bodies, fixed, name)
+        local = {point: 0j}
+        carries = self.mapping(value.get("carries") or {}, path + ("carries",))
+        for other, offset in carries.items():
+            opath = path + ("carries", other)
+            self.name(other, opath, pool)
+            local[other] = self.offset(offset, opath, units, guide, fixed)
+        if name in bodies:
+            raise self.error(path, f"name '{name}' is already used by a link or actuator")
+        bodies[name] = Body(name, "block", tuple(local), local, guide)
+
+    def offset(self, value, path, units, guide: Guide, fixed) -> complex:
+        """Offset of a carried point in the guide's axes (along, left normal).
+
+        On a fixed guide the offset may be given in the frame's axes (``[dx,
+        dy]`` or ``{dx, dy}``): the block translates, so it never changes.
+        """
+        if guide.carrier == FRAME:
+            axis = fixed[guide.c] - fixed[guide.b]
+            to_guide = (axis / abs(axis)).conjugate()
+        if isinstance(value, list):
+            if guide.carrier != FRAME:
+                raise self.error(path, "on a moving guide give {along: .., normal: ..}")
+            return self.xy(value, path, units) * to_guide
+        value = self.mapping(value, path, {"dx", "dy", "along", "normal"})
+        if "dx" in value or "dy" in value:
+            if guide.carrier != FRAME:
+                raise self.error(path, "on a moving guide give {along: .., normal: ..}")
+            world = complex(self.number(value.get("dx", 0), path + ("dx",), "length", units),
+                            self.number(value.get("dy", 0), path + ("dy",), "length", units))
+            return world * to_guide
+        return complex(self.number(value.get("along", 0), path + ("along",), "length", units),
+                       self.number(value.get("normal", 0), path + ("normal",), "length", units))
+
+    def guide(self, value, path, units, pool, bodies, fixed, slider) -> Guide:
+        """A line: {x: c}, {y: c}, {through: P or [x, y], angle: a} or {along: [B, C], offset: e}."""
+        value = self.mapping(value, path, {"x", "y", "through", "angle", "along", "offset"})
+        text = ", ".join(f"{k}: {v}" for k, v in value.items())
+        offset = self.number(value.get("offset", 0), path + ("offset",), "length", units)
+        if "along" in value:
+            b, c = self.pair(value["along"], path + ("along",), pool)
+            if b in fixed and c in fixed:
+                carrier = FRAME
+            else:
+                carrier = next((body.name for body in bodies.values() if body.kind == "link"
+                                and b in body.points and c in body.points), None)
+                if carrier is None:
+                    raise self.error(path + ("along",), f"no link carries both {b} and {c}",
+                                     hint="a moving guide runs along two points of one link")
+            return Guide(carrier, b, c, offset, text)
+        if "x" in value or "y" in value:
+            if len(value) != 1 + ("offset" in value):
+                raise self.error(path, "give only one of x or y for an axis-parallel guide")
+            if "x" in value:
+                origin = complex(self.number(value["x"], path + ("x",), "length", units), 0)
+                direction = 1j
+            else:
+                origin = complex(0, self.number(value["y"], path + ("y",), "length", units))
+                direction = 1
+        else:
+            through = self.get(value, path, "through")
+            if isinstance(through, str):
+                origin = fixed.get(self.name(through, path + ("through",), pool))
+                if origin is None:
+                    raise self.error(path + ("through",), f"'{through}' is not a fixed point")
+            else:
+                origin = self.xy(through, path + ("through",), units)
+            angle = self.number(self.get(value, path, "angle"), path + ("angle",), "angle", units)
+            direction = cmath.exp(1j * angle)
+        b, c = f"~{slider}.0", f"~{slider}.1"
+        # a direction vector of at least unit length (SI): never underflows when squared
+        scale = max(abs(origin), max((abs(p) for p in fixed.values()), default=0.0), 1.0)
+        fixed[b] = origin
+        fixed[c] = origin + direction * scale
+        return Guide(FRAME, b, c, offset, text)

@@ -1,0 +1,142 @@
+"""From a YAML document to a validated :class:`~linkcli.model.mechanism.Mechanism`.
+
+Every problem found is collected with its YAML path and line, so that
+``linkcli validate`` can report them all at once; loading raises the first
+batch as one :class:`InputErrors`.  The sections are read by one parser
+assembled from a reader per concern: bodies, driver and loads, report and keys; the
+``dynamics:`` section last, on the mechanism the others built.
+"""
+from __future__ import annotations
+
+from linkcli.input import expressions
+from linkcli.errors import InputError
+from linkcli.model.mechanism import Body, Mechanism, split_rate
+from linkcli.model.units import Units
+from linkcli.input.source import Document
+from linkcli.input.report import SECTIONS, AnswersSection
+from linkcli.input.bodies import BodiesSection
+from linkcli.input.dynamics import DynamicsReader
+from linkcli.input.loads import LoadsSection
+from linkcli.input.reader import NAME, UNKNOWN, InputErrors, Reader, _kind, _Skip
+
+TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points", "links",
+            "actuators", "sliders", "driver", "loads", "quantities", "report", "keys",
+            "dynamics"}
+
+__all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS", "UNKNOWN",
+           "NAME", "_Skip"]
+
+
+class Parser(Reader, BodiesSection, LoadsSection, AnswersSection):
+    """The whole document: units, params, frame and points, then each section."""
+
+    def parse(self) -> Mechanism:
+        data = self.doc.data
+        if not isinstance(data, dict):
+            self.error((), f"a mechanism file is a mapping of sections, got {_kind(data)}")
+            raise InputErrors(self.errors)
+        for key in data:
+            if key not in TOP_KEYS:
+                self.error((key,), f"unknown section '{key}'",
+                           hint="sections: " + ", ".join(sorted(TOP_KEYS)))
+        units = self.block(self.units, data.get("units")) or Units()
+        self.block(self.params, data)
+        fixed = self.block(self.frame, data, units) or {}
+        moving = self.block(self.moving, data, units, fixed) or {}
+        pool = set(fixed) | set(moving)
+        bodies: dict[str, Body] = {}
+        self.block(self.links, data, units, pool, bodies)
+        actuators = self.block(self.actuators, data, pool, bodies) or {}
+        self.block(self.sliders, data, units, pool, bodies, fixed)
+        driver = self.block(self.driver, data, units, pool, actuators)
+        loads = self.block(self.loads, data, units, pool, bodies, actuators, driver) or {}
+        quantities = self.block(self.quantities, data, pool, loads, driver) or {}
+        report = self.block(self.report, data, quantities, loads, pool) or {}
+        keys = self.block(self.keys, data, quantities, loads, pool, report) or ()
+        self.check_points_used(pool, bodies, actuators, fixed)
+        if self.errors:
+            raise InputErrors(self.errors)
+        title = str(data.get("title", self.doc.name))
+        mech = Mechanism(title=title, file=self.doc.name, k=self.k, units=units,
+                         fixed=fixed, moving=moving, bodies=bodies, actuators=actuators,
+                         driver=driver, loads=loads, quantities=quantities, report=report,
+                         keys=keys)
+        if "dynamics" in data:
+            mech.dynamics = DynamicsReader(self, mech, _Skip).run(data["dynamics"])
+            if self.errors:
+                raise InputErrors(self.errors)
+        return mech
+
+    def units(self, value) -> Units:
+        if value is None:
+            return Units()
+        self.mapping(value, ("units",))
+        try:
+            return Units(value)
+        except InputError as exc:
+            raise self.error(("units", exc.key.split(".")[-1]) if exc.key else ("units",),
+                             exc.detail, exc.hint) from None
+
+    def params(self, data):
+        k = data.get("k")
+        if self.k_override is not None:
+            k = self.k_override
+        if k is not None:
+            if isinstance(k, bool) or not isinstance(k, int) or not 0 <= k <= 9:
+                raise self.error(("k",), f"k must be a digit 0-9, got {k!r}",
+                                 hint="k is the last digit of the matricola")
+            self.names["k"] = float(k)
+            self.k = k
+        params = data.get("params") or {}
+        self.mapping(params, ("params",))
+        for key, value in params.items():
+            if not isinstance(key, str) or not NAME.match(key) or key in expressions.CONSTANTS \
+                    or key in expressions.FUNCTIONS or key == "k":
+                self.error(("params", key), f"'{key}' cannot be a parameter name")
+                continue
+            try:
+                self.names[key] = self.number(value, ("params", key))
+            except _Skip:
+                continue
+
+    def frame(self, data, units) -> dict:
+        frame = self.mapping(self.get(data, (), "frame"), ("frame",))
+        fixed = {}
+        for name, value in frame.items():
+            path = ("frame", name)
+            if self.block(self.name, name, path) is None:
+                continue
+            xy = self.block(self.xy, value, path, units)
+            if xy is not None:
+                fixed[name] = xy
+        if not fixed:
+            raise self.error(("frame",), "the frame needs at least one fixed point")
+        return fixed
+
+    def moving(self, data, units, fixed) -> dict:
+        points = self.mapping(self.get(data, (), "points"), ("points",))
+        moving = {}
+        for name, value in points.items():
+            path = ("points", name)
+            if self.block(self.name, name, path) is None:
+                continue
+            if name in fixed:
+                self.error(path, f"point '{name}' is both fixed (frame) and moving")
+                continue
+            xy = self.block(self.xy, value, path, units)
+            if xy is not None:
+                moving[name] = xy
+        return moving
+
+    def check_points_used(self, pool, bodies, actuators, fixed):
+        if any((e.key or "").startswith(("links", "actuators", "sliders")) for e in self.errors):
+            return   # a body that failed to parse would make its points look unused
+        used = {p for body in bodies.values() for p in body.points}
+        for point in sorted(pool - used - set(fixed)):
+            self.error(("points", point), f"moving point '{point}' belongs to no link, slider or "
+                       "actuator", hint="add it to a link or remove it")
+
+
+def build(doc: Document, k: int | None = None) -> Mechanism:
+    """The validated mechanism of ``doc`` for matricola digit ``k`` (None: the file's)."""
+    return Parser(doc, k).parse()

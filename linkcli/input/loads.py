@@ -1,0 +1,106 @@
+"""Parsing of the driver and the loads (exactly one of them unknown)."""
+from __future__ import annotations
+
+import cmath
+import math
+
+from linkcli.model.mechanism import Driver, Load
+from linkcli.input.reader import UNKNOWN
+
+
+class LoadsSection:
+    """``driver`` and ``loads`` (a mixin of the Parser)."""
+
+    def driver(self, data, units, pool, actuators) -> Driver:
+        path = ("driver",)
+        spec = self.mapping(self.get(data, (), "driver"), path,
+                            {"angle", "length", "x", "y", "value", "rate", "accel"},
+                            ("value",))
+        kinds = [k for k in ("angle", "length", "x", "y") if k in spec]
+        if len(kinds) != 1:
+            raise self.error(path, "give exactly one of angle: [P, Q], length: [P, Q], x: P, y: P")
+        kind = kinds[0]
+        if kind in ("angle", "length"):
+            a, b = self.pair(spec[kind], path + (kind,), pool)
+        else:
+            a, b = self.name(spec[kind], path + (kind,), pool), None
+        base = "angle" if kind == "angle" else "length"
+        value = self.number(spec["value"], path + ("value",), base, units)
+        rate_factor = units.factor("angular_rate") if base == "angle" else units.factor("length")
+        rate = self.number(spec.get("rate", 0), path + ("rate",)) * rate_factor
+        accel_factor = units.display(base, 2)[1]
+        accel = self.number(spec.get("accel", 0), path + ("accel",)) * accel_factor
+        if kind == "length" and value <= 0:
+            raise self.error(path + ("value",), "a driving length must be positive")
+        return Driver(kind, a, b, value, rate, accel)
+
+    def loads(self, data, units, pool, bodies, actuators, driver) -> dict:
+        spec = self.mapping(self.get(data, (), "loads", required=False, default={}) or {},
+                            ("loads",))
+        loads = {}
+        for name, value in spec.items():
+            load = self.block(self.load, name, value, units, pool, bodies, actuators, driver)
+            if load is not None:
+                loads[name] = load
+        unknown = [n for n, load in loads.items() if load.value is None]
+        if loads and len(unknown) != 1 and len(loads) == len(spec):
+            which = ", ".join(unknown) if unknown else "none"
+            self.error(("loads",), f"exactly one load must be unknown, found {len(unknown)} ({which})",
+                       hint="write 'unknown' as the value the statics must find")
+        return loads
+
+    def load(self, name, value, units, pool, bodies, actuators, driver) -> Load:
+        path = ("loads", name)
+        self.name(name, path, what="load")
+        value = self.mapping(value, path, {"type", "at", "on", "x", "y", "magnitude", "angle",
+                                           "value"}, ("type",))
+        kind = value["type"]
+        if kind == "force":
+            return self.force(name, value, path, units, pool)
+        if kind not in ("torque", "axial", "driver"):
+            raise self.error(path + ("type",), f"unknown load type {kind!r}",
+                             hint="force, torque, axial or driver")
+        for key in ("at", "x", "y", "magnitude", "angle"):
+            if key in value:
+                raise self.error(path + (key,), f"'{key}' is for forces")
+        target = None
+        if kind == "torque":
+            pool_b = {n for n, b in bodies.items() if b.kind in ("link", "block")} | set(actuators)
+            target = self.name(self.get(value, path, "on"), path + ("on",), pool_b, "link")
+        elif kind == "axial":
+            target = self.name(self.get(value, path, "on"), path + ("on",), actuators, "actuator")
+        elif "on" in value:
+            raise self.error(path + ("on",), "the driver load acts on the driver coordinate")
+        driver_unit = "torque" if driver is None or driver.kind == "angle" else "force"
+        unit = {"torque": "torque", "axial": "force", "driver": driver_unit}[kind]
+        amount = self.amount(self.get(value, path, "value"), path + ("value",), unit, units)
+        return Load(name, kind, target, 1, amount)
+
+    def amount(self, value, path, kind, units):
+        if value == UNKNOWN:
+            return None
+        return self.number(value, path, kind, units)
+
+    def force(self, name, value, path, units, pool) -> Load:
+        at = self.name(self.get(value, path, "at"), path + ("at",), pool)
+        if "on" in value or "value" in value:
+            raise self.error(path, "a force takes x/y components or magnitude and angle")
+        if "magnitude" in value:
+            angle = self.number(self.get(value, path, "angle"), path + ("angle",), "angle", units)
+            amount = self.amount(value["magnitude"], path + ("magnitude",), "force", units)
+            return Load(name, "force", at, cmath.exp(1j * angle), amount)
+        comps = {c: value[c] for c in ("x", "y") if c in value}
+        if not comps:
+            raise self.error(path, "a force needs x and/or y components, or magnitude and angle")
+        unknown = [c for c, v in comps.items() if v == UNKNOWN]
+        if unknown:
+            if len(comps) != 1:
+                raise self.error(path, "an unknown force has one direction: give only x or y")
+            return Load(name, "force", at, 1 if unknown[0] == "x" else 1j, None)
+        fx = self.number(comps.get("x", 0), path + ("x",), "force", units)
+        fy = self.number(comps.get("y", 0), path + ("y",), "force", units)
+        if len(comps) == 1:   # a force along one axis keeps its sign as its value
+            return Load(name, "force", at, 1 if "x" in comps else 1j, fx if "x" in comps else fy)
+        magnitude = math.hypot(fx, fy)
+        direction = complex(fx, fy) / magnitude if magnitude else 1
+        return Load(name, "force", at, direction, magnitude)

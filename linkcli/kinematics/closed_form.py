@@ -1,0 +1,335 @@
+"""Positions, velocities and accelerations along the solving order.
+
+Every constraint of a dyad is a quadratic form ``g(X) = 0`` in the point
+coordinates (and q).  Differentiating once and twice in time gives, for the
+dyad's unknown point P,
+
+    Re(conj(G_i) dP/dt)   = -rate_i(X, V)                      (velocity)
+    Re(conj(G_i) d2P/dt2) = -rate_i(X, A) - curv_i(V)           (acceleration)
+
+with ``G_i`` the gradient of g_i with respect to P, ``rate_i`` the part of
+dg_i/dt linear in the known rates, and ``curv_i = 2 B_i(V, V)`` the quadratic
+(centripetal and Coriolis) part.  Both are 2x2 linear systems solved by
+Cramer's rule on whole arrays of positions at once.  ``measure`` is
+``|det| / (|G_1| |G_2|)``, the sine of the angle between the two constraint
+normals: 0 at a toggle (dead point), 1 when best conditioned; it does not
+depend on the length unit.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from linkcli.kinematics import dyads
+from linkcli.kinematics.dyads import cross
+from linkcli.errors import AssemblyError, SingularError
+from linkcli.kinematics.topology import Dist, Line, analyse
+
+SINGULAR = 1e-9
+
+
+@dataclass
+class Kinematics:
+    """Positions (and rates) of every point, complex arrays in SI units."""
+
+    q: np.ndarray
+    qd: np.ndarray | None = None
+    qdd: np.ndarray | None = None
+    pos: dict = field(default_factory=dict)
+    vel: dict = field(default_factory=dict)
+    acc: dict = field(default_factory=dict)
+    short: dict = field(default_factory=dict)     # group index -> shortfall (m) array
+    measure: dict = field(default_factory=dict)   # group index -> conditioning array
+    linear: dict = field(default_factory=dict, repr=False)  # group index -> rate-system inverse
+    vectors: dict = field(default_factory=dict, repr=False)  # (a, b) -> (z, z'/z) for reports
+
+
+class Solver:
+    """Closed-form solver of one mechanism along its Assur decomposition."""
+
+    def __init__(self, mech):
+        self.mech = mech
+        self.topology = analyse(mech)
+        self.groups = self.topology.groups
+        self.fixed = dict(mech.fixed)
+        self._choose_branches()
+
+    # branches ------------------------------------------------------------------
+    def _choose_branches(self):
+        """Pick each dyad's assembly branch nearest to the figure's positions."""
+        pos = dict(self.fixed)
+        q = np.asarray(self.mech.driver.value, dtype=float)
+        for group in self.groups:
+            if group.kind in ("RRR", "RRP", "PRR", "RPR"):
+                target = self.mech.moving[group.point]
+                best = None
+                for branch in (1, -1):
+                    group.branch = branch
+                    p, _ = self._position(group, pos, q)
+                    dist = abs(complex(p) - target)
+                    if best is None or dist < best[0]:
+                        best = (dist, branch)
+                group.branch = best[1]
+            if group.point is not None:
+                pos[group.point] = self._position(group, pos, q)[0]
+
+    # positions -------------------------------------------------------------------
+    def _position(self, group, pos, q):
+        kind = group.kind
+        if kind == "place":
+            k, m, n, w = group.place
+            return pos[k] + (pos[m] - pos[n]) * w, None
+        if kind == "driver-angle":
+            pivot, length, reverse = group.constraints
+            return pos[pivot] + (-length if reverse else length) * dyads.cis(q), None
+        if kind == "driver-coord":
+            line, coord = group.constraints
+            u, e = dyads.line_frame(pos[line.b], pos[line.c], line.value)
+            if coord.axis == "x":
+                p, parallel = dyads.line_line(pos[line.b], u, e, q + 0j, 1j, 0.0)
+            else:
+                p, parallel = dyads.line_line(pos[line.b], u, e, 1j * q, 1.0 + 0j, 0.0)
+            return p, np.where(parallel, np.inf, 0.0)
+        c1, c2 = group.constraints
+        if kind == "RRR":
+            return dyads.circle_circle(pos[c1.a], self._length(c1, q), pos[c2.a],
+                                       self._length(c2, q), group.branch)
+        if kind in ("RRP", "PRR"):
+            dist, line = (c1, c2) if kind == "RRP" else (c2, c1)
+            return dyads.circle_line(pos[dist.a], self._length(dist, q), pos[line.b],
+                                     pos[line.c], line.value, group.branch)
+        if kind == "PRP":
+            u1, e1 = dyads.line_frame(pos[c1.b], pos[c1.c], c1.value)
+            u2, e2 = dyads.line_frame(pos[c2.b], pos[c2.c], c2.value)
+            p, parallel = dyads.line_line(pos[c1.b], u1, e1, pos[c2.b], u2, e2)
+            return p, np.where(parallel, np.inf, 0.0)
+        if kind == "RPR":
+            return dyads.slotted(pos[c1.a], c1.length, pos[c2.p], c2.value, group.branch)
+        return None, None
+
+    @staticmethod
+    def _length(dist, q):
+        return q if dist.length is None else dist.length
+
+    def positions(self, q) -> Kinematics:
+        q = np.asarray(q, dtype=float)
+        kin = Kinematics(q)
+        pos = kin.pos
+        pos.update(self.fixed)
+        for index, group in enumerate(self.groups):
+            if group.point is None:
+                continue
+            p, short = self._position(group, pos, q)
+            pos[group.point] = p
+            if short is not None:
+                kin.short[index] = short
+        return kin
+
+    # rates ---------------------------------------------------------------------
+    def velocities(self, kin: Kinematics, qd) -> Kinematics:
+        kin.qd = np.asarray(qd, dtype=float)
+        kin.vel.clear()
+        kin.vectors.clear()
+        for index, group in enumerate(self.groups):
+            if group.point is None:
+                continue
+            kin.vel[group.point] = self._rate(index, group, kin, kin.vel, kin.qd, None)
+        return kin
+
+    def accelerations(self, kin: Kinematics, qdd) -> Kinematics:
+        kin.qdd = np.asarray(qdd, dtype=float)
+        kin.acc.clear()
+        for index, group in enumerate(self.groups):
+            if group.point is None:
+                continue
+            kin.acc[group.point] = self._rate(index, group, kin, kin.acc, kin.qdd, kin.vel)
+        kin.linear.clear()          # rates done: free the cached systems
+        return kin
+
+    def _rate(self, index, group, kin, d, qrate, vel):
+        """First (vel None) or second time derivative of the group's point.
+
+        ``d`` holds the rates found so far; the group's own point is not in it
+        yet, so every rate read from ``d`` is a known one.
+        """
+        pos = kin.pos
+        if group.kind == "place":
+            k, m, n, w = group.place
+            return _get(d, k) + (_get(d, m) - _get(d, n)) * w
+        if group.kind == "driver-angle":
+            pivot = group.constraints[0]
+            arm = pos[group.point] - pos[pivot]
+            rate = arm * (1j * qrate) if vel is None else arm * (1j * qrate - kin.qd ** 2)
+            return d[pivot] + rate if pivot in d else rate
+        k1, k2, g1, g2 = self._inverse(index, group, kin)
+        c1, c2 = group.constraints
+        r1 = _rhs(c1, g1, pos, d, kin.q, qrate, vel, kin.qd)
+        r2 = _rhs(c2, g2, pos, d, kin.q, qrate, vel, kin.qd)
+        return _combine(r1, k1, r2, k2)
+
+    def _inverse(self, index, group, kin):
+        """The group's 2x2 rate system Re(conj(G_i) V) = r_i, solved once per position.
+
+        V = r_1 K_1 + r_2 K_2 with K_1 = -i G_2 / det, K_2 = i G_1 / det and
+        det = cross(G_1, G_2); the K are kept as (real, imaginary) arrays.
+        """
+        lin = kin.linear.get(index)
+        if lin is None:
+            pos, p = kin.pos, group.point
+            g1, g2 = (_grad(c, pos, p) for c in group.constraints)
+            det = cross(g1, g2)
+            norms = np.abs(g1) * np.abs(g2)      # hypot: no underflow of tiny guides
+            kin.measure[index] = np.abs(det) / np.where(norms > 0, norms, 1.0)
+            inv = 1.0 / np.where(det == 0, 1.0, det)
+            lin = ((g2.imag * inv, -g2.real * inv), (-g1.imag * inv, g1.real * inv), g1, g2)
+            kin.linear[index] = lin
+        return lin
+
+    # failures ------------------------------------------------------------------
+    def check(self, kin: Kinematics, velocities: bool):
+        """Raise when a group cannot be assembled or (for rates) is singular."""
+        for index, short in kin.short.items():
+            bad = np.broadcast_to(short > 0, kin.q.shape) if np.ndim(short) else short > 0
+            if np.any(bad):
+                worst = float(np.max(np.where(bad, short, 0.0)))
+                reason = "the links are parallel" if not np.isfinite(worst) else \
+                    f"the links fall short by {length_text(self.mech, worst)}"
+                raise assembly_error(self.mech, self.groups[index], kin.q, bad, worst, reason)
+        if not velocities:
+            return
+        for index, measure in kin.measure.items():
+            bad = measure < SINGULAR
+            if np.any(bad):
+                raise singular_error(self.mech, self.groups[index], kin.q,
+                                     np.broadcast_to(bad, kin.q.shape), measure,
+                                     "sine of the angle between its constraint directions")
+
+
+def assembly_error(mech, group, q, bad, worst, reason) -> AssemblyError:
+    """The error of ``group`` that cannot be assembled at the driver values ``bad``."""
+    return AssemblyError(
+        f"cannot assemble {group.describe()} {where_text(mech, q, bad)}: {reason}",
+        file=mech.file, group=group.describe(), q=q, shortfall=worst,
+        hint="check the lengths and the driver value")
+
+
+def singular_error(mech, group, q, bad, measure, meaning) -> SingularError:
+    """The error of ``group`` singular at the driver values ``bad``; ``meaning`` says what
+    its conditioning ``measure`` is."""
+    least = float(np.min(measure))
+    return SingularError(
+        f"singular position (toggle or dead point) of {group.describe()} "
+        f"{where_text(mech, q, bad)}: conditioning {least:.2e} ({meaning}); velocities are "
+        "undefined there", file=mech.file, group=group.describe(), q=q, measure=least,
+        hint="move the driver away from the toggle")
+
+
+def length_text(mech, value) -> str:
+    """A length (m) in the file's display unit."""
+    unit, factor = mech.units.display("length", 0)
+    return f"{value / factor:.4g} {unit}"
+
+
+def where_text(mech, q, bad) -> str:
+    """'at q = ...' or 'for q in [...]': the driver values ``bad`` in display units."""
+    unit, factor = mech.units.display(_driver_base(mech), 0)
+    return _q_text(q, bad, factor, unit)
+
+
+def _driver_base(mech) -> str:
+    return "angle" if mech.driver.kind == "angle" else "length"
+
+
+def _q_text(q, bad, factor, unit) -> str:
+    values = np.atleast_1d(q)[np.atleast_1d(bad)] / factor
+    if values.size <= 1:
+        value = float(values[0]) if values.size else float(np.atleast_1d(q)[0] / factor)
+        return f"at q = {value:.6g} {unit}"
+    return f"for q in [{values.min():.6g}, {values.max():.6g}] {unit} ({values.size} positions)"
+
+
+def _get(d, name):
+    return d.get(name, 0.0)
+
+
+def _grad(c, pos, unknown):
+    """Gradient of constraint ``c`` with respect to point ``unknown`` (complex)."""
+    if isinstance(c, Dist):
+        return 2.0 * (pos[c.p] - pos[c.a])
+    if isinstance(c, Line):
+        if unknown == c.p:
+            return 1j * (pos[c.c] - pos[c.b])
+        return -1j * (pos[c.p] - pos[c.b])
+    return 1.0 + 0j if c.axis == "x" else 1j
+
+
+def _delta(d, x, y):
+    """d[x] - d[y], absent entries being zero; None when both are absent."""
+    if x in d:
+        return d[x] - d[y] if y in d else d[x]
+    return -d[y] if y in d else None
+
+
+def _rhs(c, grad, pos, d, q, qrate, vel, qd):
+    """Right-hand side r of Re(conj(G) V) = r for one constraint.
+
+    r = -(part of dg/dt linear in the known rates ``d``) for velocities; for
+    accelerations (``vel`` given) also minus the quadratic part 2 B(V, V).
+    ``grad`` is the constraint's gradient G with respect to the unknown point.
+    """
+    if isinstance(c, Dist):           # g = |P - A|^2 - L^2, G = 2 (P - A), P unknown
+        va = d.get(c.a)
+        r = 0.0 if va is None else (grad.conjugate() * va).real
+        if c.length is None:
+            r = r + 2.0 * q * qrate
+        if vel is not None:
+            dv = _delta(vel, c.p, c.a)
+            if dv is not None:
+                r = r - 2.0 * (dv.real * dv.real + dv.imag * dv.imag)
+            if c.length is None:
+                r = r + 2.0 * qd * qd
+        return r
+    if isinstance(c, Line):           # g = cross(C - B, P - B) - value
+        r = 0.0
+        dcb, dpb = _delta(d, c.c, c.b), _delta(d, c.p, c.b)
+        if dcb is not None:
+            r = r - cross(dcb + 0j, pos[c.p] - pos[c.b])
+        if dpb is not None:
+            r = r - cross(pos[c.c] - pos[c.b] + 0j, dpb)
+        if vel is not None:
+            vcb, vpb = _delta(vel, c.c, c.b), _delta(vel, c.p, c.b)
+            if vcb is not None and vpb is not None:
+                r = r - 2.0 * cross(vcb + 0j, vpb)
+        return r
+    return qrate                      # g = x (or y) of P - q
+
+
+def _combine(r1, k1, r2, k2):
+    """r1 K1 + r2 K2 as a complex array, skipping terms whose r is a zero scalar."""
+    re = im = 0.0
+    for r, (kx, ky) in ((r1, k1), (r2, k2)):
+        if np.ndim(r) == 0 and r == 0:
+            continue
+        re = re + r * kx
+        im = im + r * ky
+    return dyads._complex(re, im) if np.ndim(kx) or np.ndim(re) else complex(re, im)
+
+
+def residuals(solver: Solver, kin: Kinematics) -> dict:
+    """Closure residual of every dyad constraint (m^2 for distances), for tests."""
+    out = {}
+    pos = kin.pos
+    for index, group in enumerate(solver.groups):
+        for j, c in enumerate(group.constraints if group.is_dyad or group.kind == "driver-coord"
+                              else ()):
+            if isinstance(c, Dist):
+                length = kin.q if c.length is None else c.length
+                value = np.abs(pos[c.p] - pos[c.a]) ** 2 - length ** 2
+            elif isinstance(c, Line):
+                value = cross(pos[c.c] - pos[c.b], pos[c.p] - pos[c.b]) - c.value
+            else:
+                p = pos[c.p]
+                value = (p.real if c.axis == "x" else p.imag) - kin.q
+            out[(index, j)] = value
+    return out

@@ -1,0 +1,51 @@
+"""The one place that picks a kinematic solver by method, and the state for force analysis.
+
+``closed``: the closed form along the Assur decomposition; ``newton``:
+Newton-Raphson on every constraint equation, with a tolerance relative to the
+mechanism's size.  Solvers are built once per mechanism (and tolerance) and
+kept in a cache keyed by the mechanism object, which stays plain data.
+"""
+from __future__ import annotations
+
+import weakref
+
+import numpy as np
+
+from linkcli.errors import InputError
+from linkcli.kinematics.closed_form import Solver
+
+METHODS = ("closed", "newton")
+_CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def solver_for(mech, method="closed", tol=None):
+    """The solver of ``mech`` for ``method`` ('closed' or 'newton', relative tolerance ``tol``)."""
+    if method not in METHODS:
+        raise InputError(f"unknown method {method!r}", key="method", hint="closed or newton")
+    cache = _CACHE.setdefault(mech, {})
+    if method == "closed":
+        key = ("closed",)
+        if key not in cache:
+            cache[key] = Solver(mech)
+        return cache[key]
+    from linkcli.kinematics.newton import DEFAULT_TOL, NewtonSolver
+    key = ("newton", DEFAULT_TOL if tol is None else float(tol))
+    if key not in cache:
+        cache[key] = NewtonSolver(mech, key[1])
+    return cache[key]
+
+
+def state(mech, q=None, method="closed", tol=None):
+    """(kin, unit) at driver value(s) ``q`` (SI; default the file's): ``kin`` solved to the
+    accelerations with the file's qdot and qddot, ``unit`` the velocities for qdot = 1 (the
+    virtual-power coefficients)."""
+    solver = solver_for(mech, method, tol)
+    d = mech.driver
+    q = d.value if q is None else q
+    kin = solver.positions(q)
+    solver.check(kin, velocities=False)
+    solver.velocities(kin, d.rate)
+    solver.check(kin, velocities=True)
+    solver.accelerations(kin, d.accel)
+    unit = solver.velocities(type(kin)(kin.q, pos=kin.pos), np.ones_like(kin.q))
+    return kin, unit

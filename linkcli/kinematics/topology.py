@@ -1,0 +1,336 @@
+"""Topology: Grübler's count and the Assur decomposition.
+
+Grübler (planar): ``n = 3 (m - 1) - 2 R - 2 P`` with m bodies (frame
+included), R revolute pairs (at a point shared by j bodies there are j - 1)
+and P prismatic pairs (one per slider block, one per actuator).
+
+The decomposition is topology only: starting from the frame and the driver it
+repeatedly finds a moving point fixed by two constraints from known bodies
+(a dyad: RRR, RRP/PRR, PRP, or RPR when the unknown is the orientation of a
+slotted link), or a point placed rigidly on a body whose pose is known.  A
+structure that does not reduce this way is refused by name.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from linkcli.errors import MobilityError, StructureError
+from linkcli.model.mechanism import FRAME, Mechanism
+
+
+# --- constraint descriptions (topology only; geometry is looked up by the solver)
+@dataclass(frozen=True)
+class Dist:
+    """|P - A| = length; ``length`` None means the driver q."""
+
+    p: str
+    a: str
+    length: float | None
+    body: str
+
+
+@dataclass(frozen=True)
+class Line:
+    """cross(C - B, P - B) = value: P on a line carried by B, C.  ``unknown`` is P or C."""
+
+    p: str
+    b: str
+    c: str
+    value: float
+    body: str
+    unknown: str
+
+
+@dataclass(frozen=True)
+class Coord:
+    """x (axis 'x') or y of P equals the driver q."""
+
+    p: str
+    axis: str
+    body: str = "driver"
+
+
+@dataclass
+class Group:
+    """One step of the solving order."""
+
+    kind: str              # driver-angle | driver-coord | RRR | RRP | PRR | PRP | RPR | place | RPR-actuator
+    point: str | None      # the point it solves (None: nothing to solve)
+    constraints: tuple = ()
+    bodies: tuple = ()
+    place: tuple = ()      # for 'place': (K, M, N, w) with P = K + (M - N) w
+    driver: bool = False
+    note: str = ""
+    branch: int = 1        # assembly branch (+1/-1), chosen from the figure's positions
+
+    @property
+    def is_dyad(self) -> bool:
+        return self.kind in ("RRR", "RRP", "PRR", "PRP", "RPR")
+
+    def describe(self) -> str:
+        if self.kind == "place":
+            return f"place {self.point} on {self.bodies[0]} (rigid)"
+        if self.kind == "driver-angle":
+            return f"driver: {self.bodies[0]} (crank), {self.note}"
+        if self.kind == "driver-coord":
+            return f"driver: slider {self.bodies[0]}, {self.note}"
+        if self.kind == "RPR-actuator":
+            return f"dyad RPR: actuator {self.bodies[0]} between known points {self.note}"
+        return f"dyad {self.kind}: {self.point} from {self.note} [{', '.join(self.bodies)}]" + (
+            " (driven)" if self.driver else "")
+
+
+@dataclass
+class Grubler:
+    bodies: list
+    revolutes: list        # (point, bodies at it)
+    prismatics: list       # (name, body1, body2)
+
+    @property
+    def m(self) -> int:
+        return len(self.bodies)
+
+    @property
+    def r(self) -> int:
+        return sum(len(b) - 1 for _, b in self.revolutes)
+
+    @property
+    def p(self) -> int:
+        return len(self.prismatics)
+
+    @property
+    def dof(self) -> int:
+        return 3 * (self.m - 1) - 2 * self.r - 2 * self.p
+
+    def formula(self) -> str:
+        return (f"n = 3(m - 1) - 2R - 2P = 3({self.m} - 1) - 2*{self.r} - 2*{self.p} = "
+                f"{self.dof}")
+
+
+@dataclass
+class Topology:
+    grubler: Grubler
+    groups: list = field(default_factory=list)
+
+
+def grubler(mech: Mechanism) -> Grubler:
+    bodies = [FRAME] + list(mech.bodies)
+    members: dict[str, list] = {}
+    for name in mech.fixed:
+        if not name.startswith("~"):
+            members.setdefault(name, []).append(FRAME)
+    for body in mech.bodies.values():
+        for p in body.points:
+            members.setdefault(p, []).append(body.name)
+    revolutes = [(p, tuple(b)) for p, b in members.items() if len(b) > 1]
+    prismatics = [(a.name, a.name + ".cylinder", a.name + ".rod") for a in mech.actuators.values()]
+    prismatics += [(b.name, b.name, b.guide.carrier) for b in mech.bodies.values()
+                   if b.kind == "block"]
+    return Grubler(bodies, revolutes, prismatics)
+
+
+def one_dof(mech: Mechanism) -> Grubler:
+    """Grübler's count, refusing a mechanism whose mobility is not 1."""
+    count = grubler(mech)
+    if count.dof != 1:
+        raise MobilityError(
+            f"the mechanism has {count.dof} degrees of freedom, not 1: {count.formula()}",
+            file=mech.file, hint="check that every link, slider and actuator is listed and "
+            "that pins shared by several bodies name the same point")
+    return count
+
+
+def analyse(mech: Mechanism) -> Topology:
+    return Topology(one_dof(mech), _Decomposer(mech).run())
+
+
+class _Decomposer:
+    def __init__(self, mech: Mechanism):
+        self.mech = mech
+        self.known = {p for p in mech.fixed}
+        self.known_bodies = {FRAME}
+        self.groups: list[Group] = []
+        self.driven: tuple | None = None   # (a, b) for a driving length
+        self.done_actuators: set = set()
+
+    def fail(self, detail: str, hint: str | None = None):
+        return StructureError(detail, file=self.mech.file, hint=hint)
+
+    def run(self) -> list:
+        self.driver()
+        while self.step():
+            pass
+        missing = [p for p in self.mech.moving if p not in self.known]
+        if missing:
+            raise self.fail(
+                f"the structure does not decompose into dyads (RRR, RRP, PRP, RPR): points "
+                f"{', '.join(missing)} are not reached",
+                hint="it may hold a class-III group (triad): solve it with --method newton, "
+                "or check the links around them")
+        return self.groups
+
+    # driver --------------------------------------------------------------------
+    def driver(self):
+        d = self.mech.driver
+        if d.kind == "angle":
+            crank = self.body_with(d.a, d.b)
+            if crank is None:
+                raise self.fail(f"no link joins {d.a} and {d.b}, the driver's vector")
+            if d.a in self.known and d.b not in self.known:
+                point, pivot = d.b, d.a
+            elif d.b in self.known and d.a not in self.known:
+                point, pivot = d.a, d.b
+            else:
+                raise self.fail(f"the driving vector {d.a}->{d.b} must join a fixed pivot to a "
+                                "moving point")
+            local = self.mech.bodies[crank].local
+            length = abs(local[d.b] - local[d.a])
+            self.groups.append(Group("driver-angle", point, (pivot, length, point == d.a),
+                                     (crank,), note=f"q = angle of {d.a}->{d.b}", driver=True))
+            self.known.add(point)
+        elif d.kind == "length":
+            if d.a in self.known and d.b in self.known:
+                raise self.fail(f"the driving length {d.a}{d.b} joins two fixed points")
+            self.driven = (d.a, d.b)
+            for act in self.mech.actuators.values():
+                if {act.a, act.b} == {d.a, d.b}:
+                    self.done_actuators.add(act.name)
+        else:
+            block = next((b for b in self.mech.bodies.values()
+                          if b.kind == "block" and d.a in b.points), None)
+            if block is None or block.guide.carrier != FRAME:
+                article = "an" if d.kind == "x" else "a"
+                raise self.fail(f"{article} {d.kind} driver needs {d.a} on a slider of a fixed guide")
+            line = self.line(block, d.a, d.a)
+            self.groups.append(Group("driver-coord", d.a, (line, Coord(d.a, d.kind)),
+                                     (block.name,), note=f"q = {d.kind} of {d.a}", driver=True))
+            self.known.add(d.a)
+
+    def body_with(self, *points) -> str | None:
+        return next((b.name for b in self.mech.bodies.values()
+                     if b.kind == "link" and all(p in b.points for p in points)), None)
+
+    # one step ------------------------------------------------------------------
+    def step(self) -> bool:
+        return self.place() or self.dyad() or self.rpr() or self.actuator()
+
+    def place(self) -> bool:
+        for body in self.mech.bodies.values():
+            if body.name in self.known_bodies:
+                continue
+            known = [p for p in body.points if p in self.known]
+            if body.kind == "link" and len(known) >= 2 or body.kind in ("cylinder", "rod") \
+                    and known:
+                self.settle(body, known)
+                return True
+            if body.kind == "block" and known and body.guide.carrier in self.known_bodies:
+                self.settle(body, known)
+                return True
+        return False
+
+    def settle(self, body, known):
+        """Mark ``body`` known and place its other points rigidly."""
+        self.known_bodies.add(body.name)
+        for p in body.points:
+            if p in self.known:
+                continue
+            k = known[0]
+            if body.kind == "link":
+                m = known[1]
+                w = (body.local[p] - body.local[k]) / (body.local[m] - body.local[k])
+                self.groups.append(Group("place", p, bodies=(body.name,), place=(k, m, k, w)))
+            else:
+                g = body.guide
+                w = (body.local[p] - body.local[k]) / self.guide_length(g)
+                self.groups.append(Group("place", p, bodies=(body.name,), place=(k, g.c, g.b, w)))
+            self.known.add(p)
+
+    def guide_length(self, guide) -> float:
+        if guide.carrier == FRAME:
+            return abs(self.mech.fixed[guide.c] - self.mech.fixed[guide.b])
+        local = self.mech.bodies[guide.carrier].local
+        return abs(local[guide.c] - local[guide.b])
+
+    def line(self, block, point, unknown) -> Line:
+        """The line on which ``point`` of ``block`` moves, as cross(C - B, P - B) = value."""
+        g = block.guide
+        value = self.guide_length(g) * (g.offset + block.local[point].imag)
+        return Line(point, g.b, g.c, value, block.name, unknown)
+
+    def sides(self, p):
+        """Constraints on unknown point ``p`` from bodies whose pose follows from one known point."""
+        found = []
+        for body in self.mech.bodies.values():
+            if p not in body.points or body.name in self.known_bodies:
+                continue
+            if body.kind == "link":
+                known = [a for a in body.points if a in self.known]
+                if len(known) == 1:
+                    a = known[0]
+                    found.append(Dist(p, a, abs(body.local[p] - body.local[a]), body.name))
+            elif body.kind == "block" and body.guide.carrier in self.known_bodies:
+                found.append(self.line(body, p, p))
+        if self.driven and p in self.driven:
+            other = self.driven[1] if p == self.driven[0] else self.driven[0]
+            if other in self.known:
+                act = next((a.name for a in self.mech.actuators.values()
+                            if {a.a, a.b} == set(self.driven)), f"{self.driven[0]}{self.driven[1]}")
+                found.append(Dist(p, other, None, act))
+        return found
+
+    def dyad(self) -> bool:
+        for p in self.mech.moving:
+            if p in self.known:
+                continue
+            found = self.sides(p)
+            if len(found) < 2:
+                continue
+            pair = tuple(found[:2])
+            kind = "R" + "".join("R" if isinstance(c, Dist) else "P" for c in pair)
+            kind = {"RRR": "RRR", "RRP": "RRP", "RPR": "PRR", "RPP": "PRP"}[kind]
+            note = " and ".join(self.side_text(c) for c in pair)
+            self.groups.append(Group(kind, p, pair, tuple(c.body for c in pair),
+                                     driver=any(isinstance(c, Dist) and c.length is None
+                                                for c in pair), note=note))
+            self.known.add(p)
+            return True
+        return False
+
+    def side_text(self, c) -> str:
+        if isinstance(c, Dist):
+            return f"{c.a} ({c.body}, {'q' if c.length is None else 'length'})"
+        guide = self.mech.bodies[c.body].guide
+        return f"guide {guide.text} ({c.body})"
+
+    def rpr(self) -> bool:
+        """Slotted link: a block pinned at a known point slides on a link pivoted at a known point."""
+        for block in self.mech.bodies.values():
+            g = block.guide
+            if block.kind != "block" or g.carrier in self.known_bodies or g.carrier == FRAME:
+                continue
+            pins = [p for p in block.points if p in self.known]
+            if not pins:
+                continue
+            b, c, sign = (g.b, g.c, 1) if g.b in self.known else (g.c, g.b, -1)
+            if b not in self.known or c in self.known:
+                continue
+            line = self.line(block, pins[0], c)
+            line = Line(line.p, b, c, sign * line.value, block.name, c)
+            length = self.guide_length(g)
+            pair = (Dist(c, b, length, g.carrier), line)
+            self.groups.append(Group("RPR", c, pair, (g.carrier, block.name),
+                                     note=f"{b} ({g.carrier}) and {pins[0]} ({block.name})"))
+            self.known.add(c)
+            self.settle(block, pins)   # the block's pose is known now: place its other points
+            return True
+        return False
+
+    def actuator(self) -> bool:
+        for act in self.mech.actuators.values():
+            if act.name in self.done_actuators or not {act.a, act.b} <= self.known:
+                continue
+            self.done_actuators.add(act.name)
+            self.groups.append(Group("RPR-actuator", None, bodies=(act.name,),
+                                     note=f"{act.a}, {act.b}"))
+            return True
+        return False

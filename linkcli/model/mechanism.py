@@ -1,0 +1,175 @@
+"""The validated mechanism, in SI units, as plain immutable data.
+
+Positions are complex numbers ``x + iy`` (m).  Angles are radians,
+counter-clockwise from +x.  One model serves every later stage: topology reads
+its bodies and pairs, the solver its geometry, the reporter its quantities.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from linkcli.errors import InputError
+from linkcli.model.dynamics import Dynamics
+
+FRAME = "frame"
+
+
+@dataclass(frozen=True)
+class Guide:
+    """A straight line along which a slider block translates.
+
+    The line is the set of points ``P`` with ``cross(C - B, P - B) = c``, where
+    ``B`` and ``C`` are two points of the ``carrier`` body (virtual fixed
+    points for a line of the frame) and ``c`` is constant because the carrier
+    is rigid.  Its direction is from ``B`` to ``C``.
+    """
+
+    carrier: str          # body name, FRAME for a fixed line
+    b: str
+    c: str
+    offset: float         # signed distance of the line to the left of B->C (m)
+    text: str             # how the file wrote it, for messages
+
+
+@dataclass(frozen=True)
+class Body:
+    """A rigid body: a link, a triangular link, a slider block, an actuator half.
+
+    ``local`` gives each point's coordinates in the body's own frame (complex,
+    m); for a block they are offsets from its guide point in the guide's axes
+    (along, left normal).
+    """
+
+    name: str
+    kind: str             # 'link' | 'block' | 'cylinder' | 'rod'
+    points: tuple
+    local: dict = field(default_factory=dict)
+    guide: Guide | None = None
+
+
+@dataclass(frozen=True)
+class Actuator:
+    """A linear actuator between two points: a cylinder and a rod sliding in it."""
+
+    name: str
+    a: str
+    b: str
+
+
+@dataclass(frozen=True)
+class Driver:
+    """The independent coordinate q.
+
+    kind 'angle': q is the angle of the vector a->b; 'length': q = |b - a|;
+    'x' / 'y': q is that coordinate of point ``a``.
+    """
+
+    kind: str
+    a: str
+    b: str | None
+    value: float
+    rate: float
+    accel: float
+
+
+@dataclass(frozen=True)
+class Load:
+    """An external load.  ``value`` is None for the one unknown load.
+
+    kind 'force': at point ``target`` along unit direction ``direction``
+    (complex), magnitude ``value`` (N); 'torque': on body ``target`` (N m,
+    counter-clockwise); 'axial': on actuator ``target`` (N, > 0 pushes the
+    ends apart); 'driver': generalised force on q (N or N m).
+    """
+
+    name: str
+    kind: str
+    target: str | None
+    direction: complex
+    value: float | None
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """A reported geometric quantity.
+
+    kind 'angle' (of vector a->b), 'length' (|b - a|), 'x' / 'y' (of point a),
+    'q' (the driver), 'load' (a load's value or one of its components).
+    ``base`` is 'angle', 'length' or a load unit kind for display.
+    """
+
+    name: str
+    kind: str
+    a: str | None = None
+    b: str | None = None
+    component: str | None = None
+    unit: str | None = None
+
+
+@dataclass(frozen=True)
+class KeyEntry:
+    """One printed answer key value."""
+
+    name: str
+    printed: str          # as printed (text), for display
+    value: float | tuple  # parsed number, or (x, y) for a point
+    decimals: int
+    wrong: str | None = None   # reason, when the printed value is a known key problem
+    line: int | None = None
+
+
+@dataclass(frozen=True)
+class AnswerKey:
+    k: int | None
+    entries: tuple
+
+
+@dataclass(eq=False)
+class Mechanism:
+    """A mechanism definition for one value of k (SI units).
+
+    Plain data, filled once at load time; equality is identity, so solvers may
+    be cached per mechanism by the layers above.
+    """
+
+    title: str
+    file: str
+    k: int | None
+    units: object
+    fixed: dict            # point -> complex, includes virtual guide points
+    moving: dict           # point -> approximate complex position
+    bodies: dict           # name -> Body (frame not included)
+    actuators: dict        # name -> Actuator
+    driver: Driver
+    loads: dict            # name -> Load
+    quantities: dict       # name -> Quantity
+    report: dict           # section -> list of names
+    keys: tuple = ()
+    dynamics: Dynamics | None = None   # the ``dynamics:`` section, None when absent
+
+    @property
+    def points(self) -> list:
+        return [p for p in self.fixed if not p.startswith("~")] + list(self.moving)
+
+    def unknown_load(self) -> Load:
+        load = next((load for load in self.loads.values() if load.value is None), None)
+        if load is None:
+            raise InputError("no load is 'unknown', so there is nothing to balance",
+                             file=self.file, key="loads",
+                             hint="give one load, usually the driver's, the value 'unknown'")
+        return load
+
+    def load_unit_kind(self, load: Load) -> str:
+        """'torque' for a torque or the driver load of an angle driver, else 'force'."""
+        if load.kind == "torque" or load.kind == "driver" and self.driver.kind == "angle":
+            return "torque"
+        return "force"
+
+
+def split_rate(name: str):
+    """'phi1ddot' -> ('phi1', 2); 'phi1dot' -> ('phi1', 1); 'phi1' -> ('phi1', 0)."""
+    if name.endswith("ddot") and len(name) > 4:
+        return name[:-4], 2
+    if name.endswith("dot") and len(name) > 3:
+        return name[:-3], 1
+    return name, 0

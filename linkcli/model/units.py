@@ -1,0 +1,70 @@
+"""Units: factors from the units a file declares to SI, and back for display.
+
+Internally every quantity is SI: m, rad, N, N m, s, kg.  A file declares its
+units once (``units:``); values are converted on load and results converted
+back to the display unit of each reported quantity.
+"""
+from __future__ import annotations
+
+import math
+
+from linkcli.errors import InputError
+
+LENGTH = {"m": 1.0, "cm": 0.01, "mm": 0.001, "km": 1000.0}
+ANGLE = {"rad": 1.0, "deg": math.pi / 180.0}
+ANGULAR_RATE = {"rad/s": 1.0, "deg/s": math.pi / 180.0, "rpm": 2.0 * math.pi / 60.0}
+FORCE = {"N": 1.0, "kN": 1000.0}
+TORQUE = {"Nm": 1.0, "Nmm": 0.001, "kNm": 1000.0}
+MASS = {"kg": 1.0, "g": 0.001}
+INERTIA = {"kg m^2": 1.0, "kg mm^2": 1e-6}
+
+KINDS = {
+    "length": LENGTH,
+    "angle": ANGLE,
+    "angular_rate": ANGULAR_RATE,
+    "force": FORCE,
+    "torque": TORQUE,
+    "mass": MASS,
+    "inertia": INERTIA,
+}
+
+DEFAULTS = {"length": "mm", "angle": "deg", "force": "N", "torque": "Nm",
+            "mass": "kg", "inertia": "kg m^2"}
+
+
+class Units:
+    """The unit system of one mechanism file."""
+
+    def __init__(self, declared: dict | None = None):
+        declared = dict(declared or {})
+        self.names = dict(DEFAULTS)
+        for kind, name in declared.items():
+            table = KINDS.get(kind)
+            if table is None:
+                raise InputError(f"unknown unit kind '{kind}'", key=f"units.{kind}",
+                                 hint="use one of " + ", ".join(KINDS))
+            if not isinstance(name, str) or name not in table:
+                raise InputError(f"unknown {kind} unit '{name}'", key=f"units.{kind}",
+                                 hint="use one of " + ", ".join(table))
+            self.names[kind] = name
+        self.names.setdefault("angular_rate", self.names["angle"] + "/s")
+
+    def factor(self, kind: str) -> float:
+        """SI value of one file unit of ``kind``."""
+        return KINDS[kind][self.names[kind]]
+
+    # display units of derived quantities -------------------------------------
+    def display(self, base: str, order: int) -> tuple[str, float]:
+        """Display unit and SI factor of the ``order``-th time derivative of a
+        quantity of kind ``base`` ('length' or 'angle')."""
+        if base == "angle":
+            if order == 0:
+                return self.names["angle"], self.factor("angle")
+            if order == 1:
+                return self.names["angular_rate"], self.factor("angular_rate")
+            name = self.names["angle"] if self.names["angular_rate"] == "rpm" else self.names["angular_rate"][:-2]
+            return f"{name}/s^2", ANGLE[name]
+        unit = self.names["length"]
+        factor = self.factor("length")
+        suffix = ["", "/s", "/s^2"][order]
+        return unit + suffix, factor

@@ -1,0 +1,285 @@
+"""Pictures: quantities against the driver, the mechanism with its vector polygon, motion.
+
+matplotlib (Agg, no display) is imported inside the functions, so the other
+commands never pay for it.  Every picture is written to a temporary file in
+the target folder and renamed into place: a failure leaves nothing half-written.
+What a picture shows is in :mod:`linkcli.scene`, how it is drawn in
+:mod:`linkcli.drawing`.
+"""
+from __future__ import annotations
+
+import math
+import os
+import tempfile
+
+import numpy as np
+
+from linkcli.answers.quantities import evaluate, report_names
+from linkcli.pictures.drawing import COLORS, draw_loads, draw_masses, draw_mechanism, draw_polygon, figure
+from linkcli.pictures.drawing import set_limits
+from linkcli.errors import InputError
+from linkcli.kinematics.solvers import solver_for
+from linkcli.model.mechanism import split_rate
+from linkcli.pictures.scene import Scene, disc_points, disc_turns, extent
+
+IMAGE_FORMATS = ("png", "svg", "pdf")
+MAX_STEPS = 100_000
+
+
+# --- command-line requests -----------------------------------------------------------------
+def parse_sweep(text: str) -> np.ndarray:
+    """'FROM:TO:STEPS' -> STEPS + 1 driver values FROM + i (TO - FROM) / STEPS (display units)."""
+    parts = str(text).split(":")
+    try:
+        if len(parts) != 3:
+            raise ValueError
+        start, stop, steps = float(parts[0]), float(parts[1]), int(parts[2])
+    except ValueError:
+        raise InputError(f"cannot read sweep '{text}'", key="--sweep",
+                         hint="write FROM:TO:STEPS, e.g. 0:360:72: driver values in the "
+                         "file's units, STEPS intervals") from None
+    if not (math.isfinite(start) and math.isfinite(stop)) or not 1 <= steps <= MAX_STEPS:
+        raise InputError(f"sweep '{text}': need finite FROM, TO and 1 <= STEPS <= {MAX_STEPS}",
+                         key="--sweep")
+    return start + np.arange(steps + 1) * ((stop - start) / steps)
+
+
+def default_sweep(mech) -> str:
+    """A full turn from the file's value for an angle driver; other drivers need --sweep."""
+    d = mech.driver
+    if d.kind != "angle":
+        raise InputError("give --sweep FROM:TO:STEPS for a driver that is not an angle",
+                         file=mech.file, key="--sweep",
+                         hint="driver values in the file's units, inside the assembly range")
+    _, unit, factor = _driver_text(mech)
+    start = d.value / factor
+    turn = 2 * math.pi / factor
+    return f"{start}:{start + turn}:72"
+
+
+def check_names(mech, names):
+    """Refuse names that the file does not define (quantities, their rates, loads)."""
+    if not names:
+        raise InputError("give at least one quantity to plot", key="--y",
+                         hint="e.g. --y " + (report_names(mech) or ["q"])[0])
+    for name in names:
+        base, order = split_rate(name)
+        quantity = mech.quantities.get(base)
+        ok = quantity is not None and (order == 0 if quantity.kind == "load" else True)
+        if not ok:
+            shown = report_names(mech)
+            raise InputError(f"'{name}' is not defined by this file", file=mech.file, key="--y",
+                             hint="its report defines: " + (", ".join(shown) or "nothing") +
+                             "; define others under 'quantities'")
+
+
+def check_output(path: str, formats) -> str:
+    """The picture format from the output path's extension; refuse others early."""
+    ext = os.path.splitext(str(path))[1].lower().lstrip(".")
+    if ext not in formats:
+        raise InputError(f"cannot write {'.' + ext if ext else 'files without an extension'} "
+                         "here", file=path, key="-o", hint="use " + ", ".join("." + f for f in
+                                                                               formats))
+    if os.path.isdir(path):
+        raise InputError("the output path is a folder", file=path, key="-o")
+    return ext
+
+
+def _driver_text(mech) -> tuple[str, str, float]:
+    """(what q is, its display unit, SI value of one display unit)."""
+    d = mech.driver
+    base = "angle" if d.kind == "angle" else "length"
+    unit, factor = mech.units.display(base, 0)
+    what = {"angle": f"angle of {d.a}->{d.b}", "length": f"length {d.a}{d.b}",
+            "x": f"x of {d.a}", "y": f"y of {d.a}"}[d.kind]
+    return what, unit, factor
+
+
+# --- atomic writing --------------------------------------------------------------------------
+def _save(path: str, write, formats) -> None:
+    """Write a picture through ``write(tmp_path, ext)`` to a temporary file, then rename."""
+    ext = check_output(path, formats)
+    folder = os.path.dirname(os.path.abspath(path))
+    try:
+        handle, tmp = tempfile.mkstemp(prefix=".linkcli-", suffix="." + ext, dir=folder)
+    except OSError as exc:
+        raise _write_error(path, exc) from None
+    os.close(handle)
+    try:
+        write(tmp, ext)
+        mask = os.umask(0)
+        os.umask(mask)
+        os.chmod(tmp, 0o666 & ~mask)
+        os.replace(tmp, path)
+    except OSError as exc:
+        _remove(tmp)
+        raise _write_error(path, exc) from None
+    except BaseException:
+        _remove(tmp)
+        raise
+
+
+def _write_error(path, exc) -> InputError:
+    return InputError(f"cannot write output file: {exc.strerror}", file=path, key="-o",
+                      hint="check the folder exists and is writable")
+
+
+def _remove(path):
+    try:
+        os.remove(path)
+    except OSError:
+        pass
+
+
+def _save_figure(fig, path) -> None:
+    _save(path, lambda tmp, ext: fig.savefig(tmp, format=ext), IMAGE_FORMATS)
+
+
+# --- plot ------------------------------------------------------------------------------------
+def plot(mech, sweep: str, names, output: str, dpi: int = 100) -> None:
+    """Quantities ``names`` against the driver over ``sweep``, one panel each."""
+    check_output(output, IMAGE_FORMATS)
+    check_names(mech, names)
+    q = parse_sweep(sweep)
+    result = evaluate(mech, q=q, names=list(dict.fromkeys(names)))
+    what, q_unit, _ = _driver_text(mech)
+    fig = figure(8.0, 1.2 + 2.4 * len(names), dpi)
+    axes = fig.subplots(len(names), 1, sharex=True, squeeze=False)[:, 0]
+    for ax, name, color in zip(axes, names, COLORS * len(names)):
+        _panel(ax, mech, q, result, name, color)
+    axes[-1].set_xlabel(f"q = {what} [{q_unit}]")
+    axes[0].set_title(_wrap(mech.title))
+    fig.tight_layout()
+    _save_figure(fig, output)
+
+
+def _panel(ax, mech, q, result, name, color):
+    """One quantity's curve against q."""
+    y = np.broadcast_to(np.asarray(result.values[name], dtype=float), q.shape)
+    y = _continuous(mech, name, y, result.units[name])
+    ax.plot(q, y, color=color, lw=1.8)
+    ax.set_ylabel(f"{name} [{result.units[name]}]")
+    ax.grid(True, alpha=0.35)
+    if q[0] != q[-1]:
+        ax.set_xlim(q[0], q[-1])
+
+
+def _continuous(mech, name, y, unit):
+    """Angles without the jumps of [0, 360): unwrapped, then shifted to a mean in [-180, 180)."""
+    base, order = split_rate(name)
+    quantity = mech.quantities[base]
+    is_angle = quantity.kind == "angle" or (quantity.kind == "q" and mech.driver.kind == "angle")
+    if order or not is_angle or y.size < 2:
+        return y
+    period = 360.0 if unit == "deg" else 2 * math.pi
+    y = np.unwrap(y, period=period)
+    return y - period * np.floor(np.mean(y) / period + 0.5)
+
+
+def _wrap(text, width=80):
+    import textwrap
+    return "\n".join(textwrap.wrap(str(text), width)[:3])
+
+
+# --- draw and animate ------------------------------------------------------------------------
+def _positions(mech, q):
+    """Positions at driver values ``q`` (SI); an error where the mechanism cannot assemble."""
+    solver = solver_for(mech)
+    kin = solver.positions(q)
+    solver.check(kin, velocities=False)
+    return kin
+
+
+def _axes_text(ax, scene, title, fontsize):
+    ax.set_title(title, fontsize=fontsize)
+    ax.set_xlabel(f"x [{scene.l_unit}]")
+    ax.grid(True, alpha=0.25)
+
+
+def draw(mech, output: str, dpi: int = 100) -> None:
+    """The mechanism at the file's driver value, with its vector polygon and loads."""
+    check_output(output, IMAGE_FORMATS)
+    dyn = mech.dynamics
+    kin = _positions(mech, mech.driver.value)
+    scene = Scene(mech, kin.pos)
+    values, units_text = _load_values(mech)
+    fig = figure(8.0, 6.5, dpi)
+    ax = fig.add_subplot(1, 1, 1)
+    view = [scene.p[n] for n in mech.points] + disc_points(mech, dyn, scene)
+    set_limits(ax, view, scene.size)
+    draw_mechanism(ax, scene, dyn)
+    draw_polygon(ax, scene)
+    draw_loads(ax, scene, values, units_text)
+    draw_masses(ax, scene, dyn, kin.pos)
+    what, q_unit, q_factor = _driver_text(mech)
+    _axes_text(ax, scene, _wrap(mech.title) +
+               f"\nq = {what} = {mech.driver.value / q_factor:.4g} {q_unit}", 10)
+    ax.set_ylabel(f"y [{scene.l_unit}]")
+    fig.tight_layout()
+    _save_figure(fig, output)
+
+
+def _load_values(mech):
+    """({load: value}, {load: unit}) at the file's position, for the loads that are solved."""
+    values, units_text = {}, {}
+    if mech.loads:
+        result = evaluate(mech, names=list(mech.loads))
+        for name in mech.loads:
+            if name in result.values:
+                values[name] = float(np.asarray(result.values[name]).reshape(-1)[0])
+                units_text[name] = result.units[name]
+    return values, units_text
+
+
+def animate(mech, output: str, sweep: str | None = None, fps: int = 12, dpi: int = 80) -> int:
+    """The motion over ``sweep`` as an animated GIF (pillow writer); returns the frame count."""
+    check_output(output, ("gif",))
+    dyn = mech.dynamics
+    if sweep is None:
+        q = parse_sweep(default_sweep(mech))[:-1]       # a full turn: the last frame is the first
+    else:
+        q = parse_sweep(sweep)
+    what, q_unit, q_factor = _driver_text(mech)
+    kin = _positions(mech, q * q_factor)
+    spins = disc_turns(mech, dyn, kin)
+    scenes = [Scene(mech, kin.pos, i) for i in range(q.size)]
+    every = _common_view(mech, dyn, scenes)
+    titles = [f"q = {what} = {value:.4g} {q_unit}" for value in q]
+    fig = figure(6.4, 4.8, dpi)
+    ax = fig.add_subplot(1, 1, 1)
+
+    def write(tmp, ext):
+        _write_gif(fig, tmp, fps, dpi, _frames(ax, dyn, scenes, every, spins, titles))
+
+    _save(output, write, ("gif",))
+    return int(q.size)
+
+
+def _write_gif(fig, path, fps, dpi, frames) -> None:
+    """One GIF frame of ``fig`` for each item of ``frames`` (which draws it)."""
+    from matplotlib.animation import PillowWriter
+    writer = PillowWriter(fps=fps)
+    with writer.saving(fig, path, dpi):
+        for _ in frames:
+            writer.grab_frame()
+
+
+def _frames(ax, dyn, scenes, every, spins, titles):
+    """Draw each scene in turn on ``ax``, discs turned by ``spins``; yield after each."""
+    for i, (scene, title) in enumerate(zip(scenes, titles)):
+        ax.clear()
+        set_limits(ax, every, scene.size, margin=0.08)
+        draw_mechanism(ax, scene, dyn, labels=True,
+                       spins={n: float(v[i]) for n, v in spins.items()})
+        _axes_text(ax, scene, title, 9)
+        yield
+
+
+def _common_view(mech, dyn, scenes) -> list:
+    """Every point the frames show; each scene takes their size, so the scale stays put."""
+    every = [z for scene in scenes
+             for z in [scene.p[n] for n in mech.points] + disc_points(mech, dyn, scene)]
+    size = extent(every)
+    for scene in scenes:
+        scene.size = size
+    return every

@@ -59,6 +59,9 @@ def test_schema_states_the_loaders_tables():
         assert set(unit_props[kind]["enum"]) == set(table), kind
     report = props["report"]["properties"]
     assert set(report) == set(parsing.SECTIONS) | {"decimals"}
+    from linkcli.model.mechanism import VIBRATION
+    assert set(DEFS["vibrationQuantity"]["properties"]) == set(VIBRATION) | {"unit", "time"}
+    assert set(DEFS["vibrationQuantity"]["properties"]["unit"]["enum"]) == set(units.FREQUENCY)
     reserved = props["params"]["anyOf"][1]["propertyNames"]["allOf"][1]["not"]["enum"]
     assert set(reserved) == set(expressions.CONSTANTS) | set(expressions.FUNCTIONS) | {"k"}
     assert DEFS["name"]["pattern"].replace("$", r"\Z") == parsing.NAME.pattern

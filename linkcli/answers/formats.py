@@ -8,17 +8,21 @@ import math
 
 import numpy as np
 
+from linkcli.model.mechanism import REPORT_SECTIONS
+
 HEADINGS = {
     "en": {"position": "Position analysis", "velocity": "Velocity analysis",
            "acceleration": "Acceleration analysis", "statics": "Statics (virtual work)",
            "points": "Coordinates of notable points", "driver": "Driver",
-           "dynamics": "Dynamics (virtual work with inertia and gravity)"},
+           "dynamics": "Dynamics (virtual work with inertia and gravity)",
+           "vibration": "Vibrations (linearised about the static equilibrium)"},
     "it": {"position": "Analisi Cinematica di POSIZIONE",
            "velocity": "Analisi Cinematica di VELOCITA'",
            "acceleration": "Analisi Cinematica di ACCELERAZIONE",
            "statics": "Analisi STATICA",
            "points": "Coordinate di punti notevoli", "driver": "Movente",
-           "dynamics": "Analisi DINAMICA"},
+           "dynamics": "Analisi DINAMICA",
+           "vibration": "Analisi delle VIBRAZIONI (linearizzata nell'equilibrio statico)"},
 }
 
 
@@ -43,7 +47,7 @@ def exam(result, decimals: int = 1, lang: str = "en") -> str:
     lines = [mech.title]
     if mech.k is not None:
         lines.append(f"k = {mech.k}")
-    for section in ("position", "velocity", "acceleration", "statics"):
+    for section in REPORT_SECTIONS:
         names = mech.report.get(section) or []
         if not names:
             continue

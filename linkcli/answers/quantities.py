@@ -11,9 +11,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.errors import SolveError
+from linkcli.errors import InputError, SolveError
 from linkcli.kinematics.solvers import solver_for
-from linkcli.model.mechanism import split_rate
+from linkcli.model.mechanism import REPORT_SECTIONS, split_rate
 from linkcli.forces.statics import unknown_load
 from linkcli.model.units import ANGLE, FORCE, LENGTH, TORQUE
 
@@ -29,6 +29,7 @@ class Result:
     units: dict = field(default_factory=dict)
     points: dict = field(default_factory=dict)       # name -> (x, y) in length units
     kinematics: object = None
+    analysis: object = None                          # the vibration analysis, if any
 
     @property
     def k(self):
@@ -49,16 +50,26 @@ def needed_orders(mech, names):
 
 def report_names(mech):
     names = []
-    for section in ("position", "velocity", "acceleration", "statics"):
+    for section in REPORT_SECTIONS:
         names += mech.report.get(section, [])
     return names
 
 
 def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
              tol=None) -> Result:
-    """Solve ``mech`` at driver value(s) ``q`` (display units) and evaluate ``names``."""
-    solver = solver_for(mech, method, tol)
+    """Solve ``mech`` at driver value(s) ``q`` (display units) and evaluate ``names``.
+
+    A vibration problem (a file with coordinates) is evaluated at its equilibrium
+    by ``answers.vibration`` instead.
+    """
     names = list(names) if names is not None else report_names(mech)
+    if mech.elements is not None:
+        from linkcli.answers import vibration
+        if q is not None or qdot is not None or qddot is not None or method != "closed":
+            raise InputError("a vibration problem is solved at its equilibrium: no driver "
+                             "values, rates or method to give", file=mech.file)
+        return vibration.evaluate(mech, names, Result(mech))
+    solver = solver_for(mech, method, tol)
     base = "angle" if mech.driver.kind == "angle" else "length"
     units = mech.units
     q_si = mech.driver.value if q is None else np.asarray(q, float) * units.display(base, 0)[1]
@@ -112,7 +123,7 @@ def _loads(mech, solver, kin, names):
     if not wanted:
         return {}
     values = {n: load.value for n, load in mech.loads.items()}
-    unit_kin = solver.velocities(type(kin)(kin.q, pos=kin.pos), np.ones_like(kin.q))
+    unit_kin = solver.velocities(kin.at_rest(), np.ones_like(kin.q))
     unknown = mech.unknown_load()
     extra = 0.0
     if mech.dynamics is not None:   # inertia, gravity, friction (d'Alembert)

@@ -16,12 +16,14 @@ from linkcli.input.source import Document
 from linkcli.input.report import SECTIONS, AnswersSection
 from linkcli.input.bodies import BodiesSection
 from linkcli.input.dynamics import DynamicsReader
+from linkcli.input.elements import ElementsReader
 from linkcli.input.loads import LoadsSection
 from linkcli.input.reader import NAME, UNKNOWN, InputErrors, Reader, _kind, _Skip
 
 TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points", "links",
-            "actuators", "sliders", "driver", "loads", "quantities", "report", "keys",
-            "dynamics"}
+            "actuators", "sliders", "driver", "coordinates", "loads", "quantities", "report",
+            "keys", "dynamics", "springs", "dampers", "excitation", "initial", "equilibrium"}
+VIBRATION_KEYS = ("springs", "dampers", "excitation", "initial", "equilibrium")
 
 __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS", "UNKNOWN",
            "NAME", "_Skip"]
@@ -48,8 +50,27 @@ class Parser(Reader, BodiesSection, LoadsSection, AnswersSection):
         self.block(self.links, data, units, pool, bodies)
         actuators = self.block(self.actuators, data, pool, bodies) or {}
         self.block(self.sliders, data, units, pool, bodies, fixed)
-        driver = self.block(self.driver, data, units, pool, actuators)
-        loads = self.block(self.loads, data, units, pool, bodies, actuators, driver) or {}
+        coordinates = ()
+        self.file_units = units
+        if "coordinates" in data:
+            if "driver" in data:
+                self.error(("driver",), "a file has either a driver (one degree of freedom, "
+                           "with its rates) or coordinates (vibrations), not both",
+                           hint="remove one of 'driver' and 'coordinates'")
+            coordinates = self.block(self.coordinates, data, units, pool, fixed, moving) or ()
+            driver = coordinates[0] if coordinates else None
+        else:
+            driver = self.block(self.driver, data, units, pool, actuators)
+            for key in VIBRATION_KEYS:
+                if key in data:
+                    self.error((key,), f"'{key}' belongs to a vibration problem, which declares "
+                               "its coordinates", hint="replace 'driver:' by 'coordinates:', "
+                               "e.g. coordinates: {theta: {angle: [O, A]}}")
+        loads = self.block(self.loads, data, units, pool, bodies, actuators, driver,
+                           "coordinates" not in data) or {}
+        self.vibration = {"coordinates": {c.name for c in coordinates},
+                          "springs": self.element_names(data, "springs"),
+                          "dampers": self.element_names(data, "dampers")}
         quantities = self.block(self.quantities, data, pool, loads, driver) or {}
         report = self.block(self.report, data, quantities, loads, pool) or {}
         keys = self.block(self.keys, data, quantities, loads, pool, report) or ()
@@ -60,12 +81,23 @@ class Parser(Reader, BodiesSection, LoadsSection, AnswersSection):
         mech = Mechanism(title=title, file=self.doc.name, k=self.k, units=units,
                          fixed=fixed, moving=moving, bodies=bodies, actuators=actuators,
                          driver=driver, loads=loads, quantities=quantities, report=report,
-                         keys=keys)
+                         keys=keys, coordinates=coordinates)
+        if coordinates:
+            mech.elements = ElementsReader(self, mech, _Skip).run(data)
+            for load in loads.values():
+                if load.kind == "driver":
+                    self.error(("loads", load.name), "a 'driver' load needs a driver; with "
+                               "coordinates, give forces, torques or axial loads")
         if "dynamics" in data:
             mech.dynamics = DynamicsReader(self, mech, _Skip).run(data["dynamics"])
-            if self.errors:
-                raise InputErrors(self.errors)
+        if self.errors:
+            raise InputErrors(self.errors)
         return mech
+
+    @staticmethod
+    def element_names(data, key) -> set:
+        value = data.get(key)
+        return {n for n in value if isinstance(n, str)} if isinstance(value, dict) else set()
 
     def units(self, value) -> Units:
         if value is None:

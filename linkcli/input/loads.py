@@ -34,7 +34,43 @@ class LoadsSection:
             raise self.error(path + ("value",), "a driving length must be positive")
         return Driver(kind, a, b, value, rate, accel)
 
-    def loads(self, data, units, pool, bodies, actuators, driver) -> dict:
+    def coordinates(self, data, units, pool, fixed, moving) -> tuple:
+        """``coordinates``: the independent coordinates of a mechanism with several degrees
+        of freedom (or of a vibration problem), each measured on the figure unless a
+        ``value`` is given."""
+        path = ("coordinates",)
+        spec = self.mapping(data["coordinates"], path)
+        if not spec:
+            raise self.error(path, "give at least one coordinate, e.g. theta: {angle: [O, A]}")
+        figure = {**fixed, **moving}
+        out = []
+        for name, value in spec.items():
+            c = self.block(self.coordinate, name, value, path + (name,), units, pool, figure)
+            if c is not None:
+                out.append(c)
+        return tuple(out)
+
+    def coordinate(self, name, value, path, units, pool, figure) -> Driver:
+        self.name(name, path, what="coordinate")
+        spec = self.mapping(value, path, {"angle", "length", "x", "y", "value"})
+        kinds = [k for k in ("angle", "length", "x", "y") if k in spec]
+        if len(kinds) != 1:
+            raise self.error(path, "give exactly one of angle: [P, Q], length: [P, Q], x: P, y: P")
+        kind = kinds[0]
+        if kind in ("angle", "length"):
+            a, b = self.pair(spec[kind], path + (kind,), pool)
+            z = figure.get(b, 0j) - figure.get(a, 0j)
+            measured = cmath.phase(z) if kind == "angle" else abs(z)
+        else:
+            a, b = self.name(spec[kind], path + (kind,), pool), None
+            z = figure.get(a, 0j)
+            measured = z.real if kind == "x" else z.imag
+        if "value" in spec:
+            base = "angle" if kind == "angle" else "length"
+            measured = self.number(spec["value"], path + ("value",), base, units)
+        return Driver(kind, a, b, measured, 0.0, 0.0, name)
+
+    def loads(self, data, units, pool, bodies, actuators, driver, unknown_needed=True) -> dict:
         spec = self.mapping(self.get(data, (), "loads", required=False, default={}) or {},
                             ("loads",))
         loads = {}
@@ -43,7 +79,11 @@ class LoadsSection:
             if load is not None:
                 loads[name] = load
         unknown = [n for n, load in loads.items() if load.value is None]
-        if loads and len(unknown) != 1 and len(loads) == len(spec):
+        if not unknown_needed:
+            for n in unknown:
+                self.error(("loads", n), "a vibration problem has no unknown load: every load "
+                           "is known and acts in the equilibrium", hint="give its value")
+        elif loads and len(unknown) != 1 and len(loads) == len(spec):
             which = ", ".join(unknown) if unknown else "none"
             self.error(("loads",), f"exactly one load must be unknown, found {len(unknown)} ({which})",
                        hint="write 'unknown' as the value the statics must find")

@@ -3,10 +3,10 @@ from __future__ import annotations
 
 import math
 
-from linkcli.model.mechanism import AnswerKey, KeyEntry, Quantity, split_rate
-from linkcli.model.units import ANGLE, FORCE, LENGTH, TORQUE
+from linkcli.model.mechanism import VIBRATION, AnswerKey, KeyEntry, Quantity, split_rate
+from linkcli.model.units import ANGLE, FORCE, FREQUENCY, LENGTH, TORQUE
 
-SECTIONS = ("position", "velocity", "acceleration", "statics", "points")
+SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration", "points")
 
 
 class AnswersSection:
@@ -33,6 +33,8 @@ class AnswersSection:
         if name.endswith("dot"):
             raise self.error(path, "quantity names must not end in 'dot'",
                              hint="rates are named automatically: phi1 -> phi1dot, phi1ddot")
+        if isinstance(value, dict) and any(k in value for k in VIBRATION):
+            return self.vibration_quantity(name, value, path, pool)
         value = self.mapping(value, path, {"angle", "length", "x", "y", "load", "component",
                                            "unit"})
         kinds = [k for k in ("angle", "length", "x", "y", "load") if k in value]
@@ -64,6 +66,78 @@ class AnswersSection:
             raise self.error(path + ("component",), "only forces have x and y components")
         return Quantity(name, "load", load, component=component, unit=unit)
 
+    def vibration_quantity(self, name, value, path, pool) -> Quantity:
+        """A quantity of the vibration analysis (see docs/vibrations.md)."""
+        value = self.mapping(value, path, set(VIBRATION) | {"unit", "time"})
+        kinds = [k for k in VIBRATION if k in value]
+        if len(kinds) != 1:
+            raise self.error(path, "give exactly one of " + ", ".join(kinds))
+        kind = kinds[0]
+        where = path + (kind,)
+        arg = value[kind]
+        coords = self.vibration.get("coordinates", [])
+        unit = value.get("unit")
+        if unit is not None:
+            if kind not in ("natural_frequency", "damped_frequency", "forcing_frequency"):
+                raise self.error(path + ("unit",), f"{kind} is given in fixed units",
+                                 hint="'unit' is for frequencies: rad/s, Hz or rpm")
+            if unit not in FREQUENCY:
+                raise self.error(path + ("unit",), f"unknown frequency unit {unit!r}",
+                                 hint="use one of " + ", ".join(FREQUENCY))
+        if "time" in value and kind != "free_response":
+            raise self.error(path + ("time",), "'time' is for free_response")
+        if not coords:
+            raise self.error(path, f"{kind} needs a vibration problem: declare its "
+                             "coordinates under 'coordinates:'")
+        if kind in ("natural_frequency", "damped_frequency", "damping_ratio"):
+            return Quantity(name, kind, str(self.mode(arg, where, len(coords))), unit=unit)
+        if kind == "forcing_frequency":
+            if arg is not True:
+                raise self.error(where, "write 'forcing_frequency: true'")
+            return Quantity(name, kind, unit=unit)
+        if kind == "mode_shape":
+            if not isinstance(arg, list) or len(arg) != 2:
+                raise self.error(where, "a mode shape component is [mode, coordinate]")
+            mode = self.mode(arg[0], where + (0,), len(coords))
+            return Quantity(name, kind, str(mode), self.name(arg[1], where + (1,), coords,
+                                                             "coordinate"))
+        if kind.endswith("_matrix"):
+            a, b = self.pair(arg, where, coords, "coordinate") if not (
+                isinstance(arg, list) and len(arg) == 2 and arg[0] == arg[1]) else \
+                (self.name(arg[0], where + (0,), coords, "coordinate"),) * 2
+            return Quantity(name, kind, a, b)
+        if kind == "equilibrium":
+            return Quantity(name, kind, self.name(arg, where, coords, "coordinate"))
+        if kind == "spring_force":
+            return Quantity(name, kind, self.name(arg, where, self.vibration["springs"],
+                                                  "spring"))
+        if kind == "force_amplitude":
+            items = arg if isinstance(arg, list) else [arg]
+            pool_e = self.vibration["springs"] | self.vibration["dampers"]
+            names = tuple(self.name(e, where + (i,), pool_e, "spring or damper")
+                          for i, e in enumerate(items))
+            return Quantity(name, kind, elements=names)
+        if kind == "free_response":
+            time = self.number(value.get("time", 0), path + ("time",), "time", self.file_units)
+            if time < 0:
+                raise self.error(path + ("time",), f"time must be >= 0, got {time!r}")
+            return Quantity(name, kind, self.name(arg, where, coords, "coordinate"), time=time)
+        # amplitude, phase, transmissibility: of a coordinate, or {x: P} / {y: P}
+        if isinstance(arg, dict):
+            spec = self.mapping(arg, where, {"x", "y"})
+            if len(spec) != 1:
+                raise self.error(where, "give one axis: {x: P} or {y: P}")
+            axis = next(iter(spec))
+            return Quantity(name, kind, self.name(spec[axis], where + (axis,), pool),
+                            component=axis)
+        return Quantity(name, kind, self.name(arg, where, coords, "coordinate"))
+
+    def mode(self, value, path, count) -> int:
+        if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= count:
+            raise self.error(path, f"a mode is numbered 1-{count} (from the lowest frequency), "
+                             f"got {value!r}")
+        return value
+
     def report(self, data, quantities, loads, pool) -> dict:
         spec = self.mapping(self.get(data, (), "report"), ("report",), set(SECTIONS) | {"decimals"})
         report = {}
@@ -91,8 +165,16 @@ class AnswersSection:
         if section == "points":
             self.name(name, path, pool)
             return True
-        order = {"position": 0, "velocity": 1, "acceleration": 2, "statics": 0}[section]
+        order = {"position": 0, "velocity": 1, "acceleration": 2, "statics": 0,
+                 "vibration": 0}[section]
         base = split_rate(name)
+        vibration = name in quantities and quantities[name].kind in VIBRATION
+        if section == "vibration" or vibration:
+            if not vibration or section != "vibration":
+                raise self.error(path, f"'{name}' is {'' if vibration else 'not '}a quantity of "
+                                 "the vibration analysis", hint="the 'vibration' section lists "
+                                 "natural frequencies, modes, matrices, equilibrium, amplitudes")
+            return True
         if section == "statics":
             if name not in quantities or quantities[name].kind != "load":
                 raise self.error(path, f"'{name}' is not a load", hint="statics lists loads")

@@ -23,7 +23,7 @@ import numpy as np
 
 from linkcli.kinematics import dyads
 from linkcli.kinematics.dyads import cross
-from linkcli.errors import AssemblyError, SingularError
+from linkcli.errors import AssemblyError, InputError, SingularError
 from linkcli.kinematics.topology import Dist, Line, analyse
 
 SINGULAR = 1e-9
@@ -31,11 +31,18 @@ SINGULAR = 1e-9
 
 @dataclass
 class Kinematics:
-    """Positions (and rates) of every point, complex arrays in SI units."""
+    """Positions (and rates) of every point, complex arrays in SI units.
+
+    ``q``, ``qd``, ``qdd`` are the first coordinate (the driver) and its rates;
+    ``coords``, ``rates``, ``accels`` hold every coordinate's, in order.
+    """
 
     q: np.ndarray
     qd: np.ndarray | None = None
     qdd: np.ndarray | None = None
+    coords: tuple = ()
+    rates: tuple = ()
+    accels: tuple = ()
     pos: dict = field(default_factory=dict)
     vel: dict = field(default_factory=dict)
     acc: dict = field(default_factory=dict)
@@ -43,6 +50,20 @@ class Kinematics:
     measure: dict = field(default_factory=dict)   # group index -> conditioning array
     linear: dict = field(default_factory=dict, repr=False)  # group index -> rate-system inverse
     vectors: dict = field(default_factory=dict, repr=False)  # (a, b) -> (z, z'/z) for reports
+
+    def __post_init__(self):
+        if not self.coords:
+            self.coords = (self.q,)
+
+    def at_rest(self):
+        """The same positions with no rates yet (for velocities per unit rate)."""
+        return Kinematics(self.q, pos=self.pos, coords=self.coords)
+
+    @property
+    def shape(self) -> tuple:
+        """The shape of the positions: every coordinate's broadcast together."""
+        return np.broadcast_shapes(*(np.shape(c) for c in self.coords)) if self.coords \
+            else np.shape(self.q)
 
 
 class Solver:
@@ -53,13 +74,15 @@ class Solver:
         self.topology = analyse(mech)
         self.groups = self.topology.groups
         self.fixed = dict(mech.fixed)
+        self.n = len(mech.coordinates)
         self._choose_branches()
 
     # branches ------------------------------------------------------------------
     def _choose_branches(self):
         """Pick each dyad's assembly branch nearest to the figure's positions."""
         pos = dict(self.fixed)
-        q = np.asarray(self.mech.driver.value, dtype=float)
+        q = self._coords([c.value for c in self.mech.coordinates] if self.n > 1
+                         else self.mech.driver.value, "q")
         for group in self.groups:
             if group.kind in ("RRR", "RRP", "PRR", "RPR"):
                 target = self.mech.moving[group.point]
@@ -82,14 +105,16 @@ class Solver:
             return pos[k] + (pos[m] - pos[n]) * w, None
         if kind == "driver-angle":
             pivot, length, reverse = group.constraints
-            return pos[pivot] + (-length if reverse else length) * dyads.cis(q), None
+            return pos[pivot] + (-length if reverse else length) * dyads.cis(q[group.coord]), \
+                None
         if kind == "driver-coord":
             line, coord = group.constraints
+            value = q[coord.coord]
             u, e = dyads.line_frame(pos[line.b], pos[line.c], line.value)
             if coord.axis == "x":
-                p, parallel = dyads.line_line(pos[line.b], u, e, q + 0j, 1j, 0.0)
+                p, parallel = dyads.line_line(pos[line.b], u, e, value + 0j, 1j, 0.0)
             else:
-                p, parallel = dyads.line_line(pos[line.b], u, e, 1j * q, 1.0 + 0j, 0.0)
+                p, parallel = dyads.line_line(pos[line.b], u, e, 1j * value, 1.0 + 0j, 0.0)
             return p, np.where(parallel, np.inf, 0.0)
         c1, c2 = group.constraints
         if kind == "RRR":
@@ -110,11 +135,25 @@ class Solver:
 
     @staticmethod
     def _length(dist, q):
-        return q if dist.length is None else dist.length
+        return q[dist.coord] if dist.length is None else dist.length
+
+    def _coords(self, q, what) -> tuple:
+        """Every coordinate as a float array: ``q`` itself with one coordinate, else a
+        sequence of ``n`` values or arrays (they broadcast together)."""
+        if self.n == 1:
+            return (np.asarray(q, dtype=float),)
+        if np.ndim(q) == 0 or len(q) != self.n:
+            raise InputError(f"{what}: give one value (or array) per coordinate, "
+                             f"{self.n} in all", file=self.mech.file, key="coordinates",
+                             hint="in the order of 'coordinates': " +
+                             ", ".join(c.name for c in self.mech.coordinates))
+        return tuple(np.asarray(x, dtype=float) for x in q)
 
     def positions(self, q) -> Kinematics:
-        q = np.asarray(q, dtype=float)
-        kin = Kinematics(q)
+        """Every point at coordinate value(s) ``q`` (SI): one array, or one per coordinate."""
+        qs = self._coords(q, "q")
+        kin = Kinematics(qs[0], coords=qs)
+        q = qs
         pos = kin.pos
         pos.update(self.fixed)
         for index, group in enumerate(self.groups):
@@ -128,23 +167,29 @@ class Solver:
 
     # rates ---------------------------------------------------------------------
     def velocities(self, kin: Kinematics, qd) -> Kinematics:
-        kin.qd = np.asarray(qd, dtype=float)
+        """Velocities of every point for coordinate rate(s) ``qd``, as ``q`` in positions."""
+        kin.rates = self._coords(qd, "qdot")
+        kin.qd = kin.rates[0]
         kin.vel.clear()
         kin.vectors.clear()
         for index, group in enumerate(self.groups):
             if group.point is None:
                 continue
-            kin.vel[group.point] = self._rate(index, group, kin, kin.vel, kin.qd, None)
+            kin.vel[group.point] = self._rate(index, group, kin, kin.vel, kin.rates, None)
         return kin
 
-    def accelerations(self, kin: Kinematics, qdd) -> Kinematics:
-        kin.qdd = np.asarray(qdd, dtype=float)
+    def accelerations(self, kin: Kinematics, qdd, keep=False) -> Kinematics:
+        """Accelerations of every point for coordinate acceleration(s) ``qdd`` and the
+        velocities already on ``kin``; ``keep`` keeps the rate systems for another call."""
+        kin.accels = self._coords(qdd, "qddot")
+        kin.qdd = kin.accels[0]
         kin.acc.clear()
         for index, group in enumerate(self.groups):
             if group.point is None:
                 continue
-            kin.acc[group.point] = self._rate(index, group, kin, kin.acc, kin.qdd, kin.vel)
-        kin.linear.clear()          # rates done: free the cached systems
+            kin.acc[group.point] = self._rate(index, group, kin, kin.acc, kin.accels, kin.vel)
+        if not keep:
+            kin.linear.clear()          # rates done: free the cached systems
         return kin
 
     def _rate(self, index, group, kin, d, qrate, vel):
@@ -160,12 +205,14 @@ class Solver:
         if group.kind == "driver-angle":
             pivot = group.constraints[0]
             arm = pos[group.point] - pos[pivot]
-            rate = arm * (1j * qrate) if vel is None else arm * (1j * qrate - kin.qd ** 2)
+            j = group.coord
+            rate = arm * (1j * qrate[j]) if vel is None else \
+                arm * (1j * qrate[j] - kin.rates[j] ** 2)
             return d[pivot] + rate if pivot in d else rate
         k1, k2, g1, g2 = self._inverse(index, group, kin)
         c1, c2 = group.constraints
-        r1 = _rhs(c1, g1, pos, d, kin.q, qrate, vel, kin.qd)
-        r2 = _rhs(c2, g2, pos, d, kin.q, qrate, vel, kin.qd)
+        r1 = _rhs(c1, g1, pos, d, kin.coords, qrate, vel, kin.rates)
+        r2 = _rhs(c2, g2, pos, d, kin.coords, qrate, vel, kin.rates)
         return _combine(r1, k1, r2, k2)
 
     def _inverse(self, index, group, kin):
@@ -190,7 +237,7 @@ class Solver:
     def check(self, kin: Kinematics, velocities: bool):
         """Raise when a group cannot be assembled or (for rates) is singular."""
         for index, short in kin.short.items():
-            bad = np.broadcast_to(short > 0, kin.q.shape) if np.ndim(short) else short > 0
+            bad = np.broadcast_to(short > 0, kin.shape) if np.ndim(short) else short > 0
             if np.any(bad):
                 worst = float(np.max(np.where(bad, short, 0.0)))
                 reason = "the links are parallel" if not np.isfinite(worst) else \
@@ -202,7 +249,7 @@ class Solver:
             bad = measure < SINGULAR
             if np.any(bad):
                 raise singular_error(self.mech, self.groups[index], kin.q,
-                                     np.broadcast_to(bad, kin.q.shape), measure,
+                                     np.broadcast_to(bad, kin.shape), measure,
                                      "sine of the angle between its constraint directions")
 
 
@@ -282,13 +329,13 @@ def _rhs(c, grad, pos, d, q, qrate, vel, qd):
         va = d.get(c.a)
         r = 0.0 if va is None else (grad.conjugate() * va).real
         if c.length is None:
-            r = r + 2.0 * q * qrate
+            r = r + 2.0 * q[c.coord] * qrate[c.coord]
         if vel is not None:
             dv = _delta(vel, c.p, c.a)
             if dv is not None:
                 r = r - 2.0 * (dv.real * dv.real + dv.imag * dv.imag)
             if c.length is None:
-                r = r + 2.0 * qd * qd
+                r = r + 2.0 * qd[c.coord] * qd[c.coord]
         return r
     if isinstance(c, Line):           # g = cross(C - B, P - B) - value
         r = 0.0
@@ -302,7 +349,7 @@ def _rhs(c, grad, pos, d, q, qrate, vel, qd):
             if vcb is not None and vpb is not None:
                 r = r - 2.0 * cross(vcb + 0j, vpb)
         return r
-    return qrate                      # g = x (or y) of P - q
+    return qrate[c.coord]             # g = x (or y) of P - q
 
 
 def _combine(r1, k1, r2, k2):
@@ -324,12 +371,12 @@ def residuals(solver: Solver, kin: Kinematics) -> dict:
         for j, c in enumerate(group.constraints if group.is_dyad or group.kind == "driver-coord"
                               else ()):
             if isinstance(c, Dist):
-                length = kin.q if c.length is None else c.length
+                length = kin.coords[c.coord] if c.length is None else c.length
                 value = np.abs(pos[c.p] - pos[c.a]) ** 2 - length ** 2
             elif isinstance(c, Line):
                 value = cross(pos[c.c] - pos[c.b], pos[c.p] - pos[c.b]) - c.value
             else:
                 p = pos[c.p]
-                value = (p.real if c.axis == "x" else p.imag) - kin.q
+                value = (p.real if c.axis == "x" else p.imag) - kin.coords[c.coord]
             out[(index, j)] = value
     return out

@@ -47,5 +47,5 @@ def state(mech, q=None, method="closed", tol=None):
     solver.velocities(kin, d.rate)
     solver.check(kin, velocities=True)
     solver.accelerations(kin, d.accel)
-    unit = solver.velocities(type(kin)(kin.q, pos=kin.pos), np.ones_like(kin.q))
+    unit = solver.velocities(kin.at_rest(), np.ones_like(kin.q))
     return kin, unit

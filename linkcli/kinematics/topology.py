@@ -21,12 +21,13 @@ from linkcli.model.mechanism import FRAME, Mechanism
 # --- constraint descriptions (topology only; geometry is looked up by the solver)
 @dataclass(frozen=True)
 class Dist:
-    """|P - A| = length; ``length`` None means the driver q."""
+    """|P - A| = length; ``length`` None means coordinate number ``coord`` (a driven length)."""
 
     p: str
     a: str
     length: float | None
     body: str
+    coord: int = 0
 
 
 @dataclass(frozen=True)
@@ -43,11 +44,12 @@ class Line:
 
 @dataclass(frozen=True)
 class Coord:
-    """x (axis 'x') or y of P equals the driver q."""
+    """x (axis 'x') or y of P equals coordinate number ``coord``."""
 
     p: str
     axis: str
     body: str = "driver"
+    coord: int = 0
 
 
 @dataclass
@@ -62,6 +64,7 @@ class Group:
     driver: bool = False
     note: str = ""
     branch: int = 1        # assembly branch (+1/-1), chosen from the figure's positions
+    coord: int = 0         # the coordinate a driver group sets
 
     @property
     def is_dyad(self) -> bool:
@@ -130,13 +133,20 @@ def grubler(mech: Mechanism) -> Grubler:
 
 
 def one_dof(mech: Mechanism) -> Grubler:
-    """Grübler's count, refusing a mechanism whose mobility is not 1."""
+    """Grübler's count, refusing a mechanism whose mobility is not its number of coordinates
+    (1 for a file with a ``driver:``)."""
     count = grubler(mech)
-    if count.dof != 1:
+    n = len(mech.coordinates)
+    if count.dof != n:
+        declared = "1" if n == 1 else \
+            f"{n} (the coordinates {', '.join(c.name for c in mech.coordinates)})"
         raise MobilityError(
-            f"the mechanism has {count.dof} degrees of freedom, not 1: {count.formula()}",
-            file=mech.file, hint="check that every link, slider and actuator is listed and "
-            "that pins shared by several bodies name the same point")
+            f"the mechanism has {count.dof} degrees of freedom, not {declared}: "
+            f"{count.formula()}", file=mech.file,
+            hint="check that every link, slider and actuator is listed and that pins shared "
+            "by several bodies name the same point" + (
+                "; a mechanism with several degrees of freedom declares one coordinate each "
+                "under 'coordinates:'" if count.dof > n else ""))
     return count
 
 
@@ -150,16 +160,23 @@ class _Decomposer:
         self.known = {p for p in mech.fixed}
         self.known_bodies = {FRAME}
         self.groups: list[Group] = []
-        self.driven: tuple | None = None   # (a, b) for a driving length
+        self.pending = dict(enumerate(mech.coordinates))
+        self.driven: dict = {}             # {a, b} -> coordinate of a driving length
         self.done_actuators: set = set()
 
     def fail(self, detail: str, hint: str | None = None):
         return StructureError(detail, file=self.mech.file, hint=hint)
 
     def run(self) -> list:
-        self.driver()
         while self.step():
             pass
+        if self.pending:
+            d = next(iter(self.pending.values()))
+            if len(self.mech.coordinates) == 1:
+                raise self.fail(f"the driving vector {d.a}->{d.b} must join a fixed pivot to a "
+                                "moving point")
+            raise self.fail(f"coordinate {d.name}: the vector {d.a}->{d.b} must join a fixed "
+                            "pivot, or a point placed before it, to a moving point")
         missing = [p for p in self.mech.moving if p not in self.known]
         if missing:
             raise self.fail(
@@ -169,42 +186,64 @@ class _Decomposer:
                 "or check the links around them")
         return self.groups
 
-    # driver --------------------------------------------------------------------
-    def driver(self):
-        d = self.mech.driver
+    # drivers -------------------------------------------------------------------
+    def drivers(self) -> bool:
+        """Place every coordinate whose reference is known; True when one was placed."""
+        placed = False
+        for j, d in list(self.pending.items()):
+            if self.driver(j, d):
+                del self.pending[j]
+                placed = True
+        return placed
+
+    def driver(self, j, d) -> bool:
+        """The driver group of coordinate ``j`` when its pivot or guide is known."""
         if d.kind == "angle":
             crank = self.body_with(d.a, d.b)
             if crank is None:
-                raise self.fail(f"no link joins {d.a} and {d.b}, the driver's vector")
-            if d.a in self.known and d.b not in self.known:
+                raise self.fail(f"no link joins {d.a} and {d.b}, the vector of {self.label(d)}")
+            if d.a in self.known and d.b in self.known:
+                raise self.fail(f"the vector {d.a}->{d.b} of {self.label(d)} joins two points "
+                                "already placed", hint="the angle of a link must have one end "
+                                "on the frame or on a link placed before")
+            if d.a in self.known:
                 point, pivot = d.b, d.a
-            elif d.b in self.known and d.a not in self.known:
+            elif d.b in self.known:
                 point, pivot = d.a, d.b
             else:
-                raise self.fail(f"the driving vector {d.a}->{d.b} must join a fixed pivot to a "
-                                "moving point")
+                return False
             local = self.mech.bodies[crank].local
             length = abs(local[d.b] - local[d.a])
             self.groups.append(Group("driver-angle", point, (pivot, length, point == d.a),
-                                     (crank,), note=f"q = angle of {d.a}->{d.b}", driver=True))
+                                     (crank,), note=f"{d.name} = angle of {d.a}->{d.b}",
+                                     driver=True, coord=j))
             self.known.add(point)
-        elif d.kind == "length":
-            if d.a in self.known and d.b in self.known:
-                raise self.fail(f"the driving length {d.a}{d.b} joins two fixed points")
-            self.driven = (d.a, d.b)
+            return True
+        if d.kind == "length":
+            if d.a in self.mech.fixed and d.b in self.mech.fixed:
+                what = "the driving length" if len(self.mech.coordinates) == 1 else \
+                    f"coordinate {d.name}: the length"
+                raise self.fail(f"{what} {d.a}{d.b} joins two fixed points")
+            self.driven[frozenset((d.a, d.b))] = j
             for act in self.mech.actuators.values():
                 if {act.a, act.b} == {d.a, d.b}:
                     self.done_actuators.add(act.name)
-        else:
-            block = next((b for b in self.mech.bodies.values()
-                          if b.kind == "block" and d.a in b.points), None)
-            if block is None or block.guide.carrier != FRAME:
-                article = "an" if d.kind == "x" else "a"
-                raise self.fail(f"{article} {d.kind} driver needs {d.a} on a slider of a fixed guide")
-            line = self.line(block, d.a, d.a)
-            self.groups.append(Group("driver-coord", d.a, (line, Coord(d.a, d.kind)),
-                                     (block.name,), note=f"q = {d.kind} of {d.a}", driver=True))
-            self.known.add(d.a)
+            return True
+        block = next((b for b in self.mech.bodies.values()
+                      if b.kind == "block" and d.a in b.points), None)
+        if block is None or block.guide.carrier != FRAME:
+            article = "an" if d.kind == "x" else "a"
+            what = "driver" if len(self.mech.coordinates) == 1 else f"coordinate ({d.name})"
+            raise self.fail(f"{article} {d.kind} {what} needs {d.a} on a slider of a fixed guide")
+        line = self.line(block, d.a, d.a)
+        self.groups.append(Group("driver-coord", d.a, (line, Coord(d.a, d.kind, coord=j)),
+                                 (block.name,), note=f"{d.name} = {d.kind} of {d.a}",
+                                 driver=True, coord=j))
+        self.known.add(d.a)
+        return True
+
+    def label(self, d) -> str:
+        return "the driver" if len(self.mech.coordinates) == 1 else f"coordinate {d.name}"
 
     def body_with(self, *points) -> str | None:
         return next((b.name for b in self.mech.bodies.values()
@@ -212,7 +251,8 @@ class _Decomposer:
 
     # one step ------------------------------------------------------------------
     def step(self) -> bool:
-        return self.place() or self.dyad() or self.rpr() or self.actuator()
+        return self.drivers() or self.place() or self.dyad() or self.rpr() or \
+            self.actuator()
 
     def place(self) -> bool:
         for body in self.mech.bodies.values():
@@ -270,12 +310,14 @@ class _Decomposer:
                     found.append(Dist(p, a, abs(body.local[p] - body.local[a]), body.name))
             elif body.kind == "block" and body.guide.carrier in self.known_bodies:
                 found.append(self.line(body, p, p))
-        if self.driven and p in self.driven:
-            other = self.driven[1] if p == self.driven[0] else self.driven[0]
+        for ends, j in self.driven.items():
+            if p not in ends:
+                continue
+            other = next(iter(ends - {p}))
             if other in self.known:
                 act = next((a.name for a in self.mech.actuators.values()
-                            if {a.a, a.b} == set(self.driven)), f"{self.driven[0]}{self.driven[1]}")
-                found.append(Dist(p, other, None, act))
+                            if {a.a, a.b} == ends), "".join(sorted(ends)))
+                found.append(Dist(p, other, None, act, coord=j))
         return found
 
     def dyad(self) -> bool:
@@ -298,7 +340,8 @@ class _Decomposer:
 
     def side_text(self, c) -> str:
         if isinstance(c, Dist):
-            return f"{c.a} ({c.body}, {'q' if c.length is None else 'length'})"
+            driven = self.mech.coordinates[c.coord].name if c.length is None else "length"
+            return f"{c.a} ({c.body}, {driven})"
         guide = self.mech.bodies[c.body].guide
         return f"guide {guide.text} ({c.body})"
 

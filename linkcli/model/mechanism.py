@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 
 from linkcli.errors import InputError
 from linkcli.model.dynamics import Dynamics
+from linkcli.model.elements import Elements
 
 FRAME = "frame"
 
@@ -58,10 +59,11 @@ class Actuator:
 
 @dataclass(frozen=True)
 class Driver:
-    """The independent coordinate q.
+    """An independent coordinate: the driver q of a 1-DOF file, or one of ``coordinates``.
 
     kind 'angle': q is the angle of the vector a->b; 'length': q = |b - a|;
-    'x' / 'y': q is that coordinate of point ``a``.
+    'x' / 'y': q is that coordinate of point ``a``.  ``value`` is the
+    figure's; ``rate`` and ``accel`` are the driver's (0 for coordinates).
     """
 
     kind: str
@@ -70,6 +72,12 @@ class Driver:
     value: float
     rate: float
     accel: float
+    name: str = "q"
+
+    @property
+    def base(self) -> str:
+        """'angle' or 'length': the kind of unit q is measured in."""
+        return "angle" if self.kind == "angle" else "length"
 
 
 @dataclass(frozen=True)
@@ -91,11 +99,15 @@ class Load:
 
 @dataclass(frozen=True)
 class Quantity:
-    """A reported geometric quantity.
+    """A reported quantity.
 
-    kind 'angle' (of vector a->b), 'length' (|b - a|), 'x' / 'y' (of point a),
-    'q' (the driver), 'load' (a load's value or one of its components).
-    ``base`` is 'angle', 'length' or a load unit kind for display.
+    Geometry: kind 'angle' (of vector a->b), 'length' (|b - a|), 'x' / 'y' (of
+    point a), 'q' (the driver), 'load' (a load's value or one of its components).
+    Vibrations (kinds in VIBRATION): ``a`` names the mode (1-based, as text), the
+    coordinate or the element, ``b`` the second coordinate of a matrix entry or
+    of a mode shape, ``component`` the axis of a point's amplitude, ``elements``
+    the springs and dampers of a force amplitude, ``time`` the instant of a free
+    response (s).
     """
 
     name: str
@@ -104,6 +116,18 @@ class Quantity:
     b: str | None = None
     component: str | None = None
     unit: str | None = None
+    elements: tuple = ()
+    time: float = 0.0
+
+
+#: the report's sections of named quantities, in the order of the answer sheet
+REPORT_SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration")
+
+#: quantity kinds of the vibration analysis (each is also the YAML key that asks for it)
+VIBRATION = ("natural_frequency", "damped_frequency", "damping_ratio", "mode_shape",
+             "mass_matrix", "stiffness_matrix", "damping_matrix", "equilibrium",
+             "spring_force", "amplitude", "phase", "transmissibility", "force_amplitude",
+             "free_response", "forcing_frequency")
 
 
 @dataclass(frozen=True)
@@ -146,6 +170,12 @@ class Mechanism:
     report: dict           # section -> list of names
     keys: tuple = ()
     dynamics: Dynamics | None = None   # the ``dynamics:`` section, None when absent
+    coordinates: tuple = ()            # every independent coordinate; (driver,) for 1 DOF
+    elements: Elements | None = None   # springs, dampers, forcing: None when absent
+
+    def __post_init__(self):
+        if not self.coordinates:
+            self.coordinates = (self.driver,)
 
     @property
     def points(self) -> list:

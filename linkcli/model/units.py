@@ -17,6 +17,13 @@ FORCE = {"N": 1.0, "kN": 1000.0}
 TORQUE = {"Nm": 1.0, "Nmm": 0.001, "kNm": 1000.0}
 MASS = {"kg": 1.0, "g": 0.001}
 INERTIA = {"kg m^2": 1.0, "kg mm^2": 1e-6}
+STIFFNESS = {"N/m": 1.0, "N/mm": 1000.0, "kN/m": 1000.0}
+TORSIONAL_STIFFNESS = {"Nm/rad": 1.0, "Nmm/rad": 0.001, "Nm/deg": 180.0 / math.pi}
+DAMPING = {"Ns/m": 1.0, "Ns/mm": 1000.0, "kNs/m": 1000.0}
+TORSIONAL_DAMPING = {"Nms/rad": 1.0, "Nmms/rad": 0.001}
+FREQUENCY = {"rad/s": 1.0, "Hz": 2.0 * math.pi, "rpm": 2.0 * math.pi / 60.0}
+SPEED = {"m/s": 1.0, "km/h": 1.0 / 3.6, "mm/s": 0.001}
+TIME = {"s": 1.0, "ms": 0.001}
 
 KINDS = {
     "length": LENGTH,
@@ -26,10 +33,19 @@ KINDS = {
     "torque": TORQUE,
     "mass": MASS,
     "inertia": INERTIA,
+    "stiffness": STIFFNESS,
+    "torsional_stiffness": TORSIONAL_STIFFNESS,
+    "damping": DAMPING,
+    "torsional_damping": TORSIONAL_DAMPING,
+    "frequency": FREQUENCY,
+    "speed": SPEED,
+    "time": TIME,
 }
 
 DEFAULTS = {"length": "mm", "angle": "deg", "force": "N", "torque": "Nm",
-            "mass": "kg", "inertia": "kg m^2"}
+            "mass": "kg", "inertia": "kg m^2", "stiffness": "N/m",
+            "torsional_stiffness": "Nm/rad", "damping": "Ns/m", "torsional_damping": "Nms/rad",
+            "frequency": "rad/s", "speed": "m/s", "time": "s"}
 
 
 class Units:

@@ -11,7 +11,8 @@ so the model itself never imports a solver.
 """
 from __future__ import annotations
 
-from linkcli.answers.quantities import Result, evaluate
+from linkcli.answers.quantities import Result
+from linkcli.answers.sheet import evaluate
 from linkcli.errors import LinkcliError
 from linkcli.input.document import build
 from linkcli.input.source import load_file, load_text

@@ -112,7 +112,7 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions):
     from linkcli.answers.formats import render
     mech = _load(file, k)
     decimals = mech.report.get("decimals", 1) if decimals is None else decimals
-    from linkcli.answers.quantities import evaluate
+    from linkcli.answers.sheet import evaluate
     text = render(evaluate(mech, method=method, tol=_tol(tol)), form, decimals, lang)
     if reactions:
         from linkcli.answers.reaction_table import append_report

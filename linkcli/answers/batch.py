@@ -3,7 +3,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from linkcli.answers.quantities import evaluate, report_names
+from linkcli.answers.quantities import report_names
+from linkcli.answers.sheet import evaluate
 from linkcli.errors import InputError
 from linkcli.input.document import build
 

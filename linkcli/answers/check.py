@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.answers.quantities import evaluate
+from linkcli.answers.sheet import evaluate
 from linkcli.errors import LinkcliError
 from linkcli.input.document import build
 from linkcli.model.mechanism import split_rate

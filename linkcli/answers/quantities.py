@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.errors import InputError, SolveError
+from linkcli.errors import SolveError
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import REPORT_SECTIONS, split_rate
 from linkcli.forces.statics import unknown_load
@@ -57,18 +57,8 @@ def report_names(mech):
 
 def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
              tol=None) -> Result:
-    """Solve ``mech`` at driver value(s) ``q`` (display units) and evaluate ``names``.
-
-    A vibration problem (a file with coordinates) is evaluated at its equilibrium
-    by ``answers.vibration`` instead.
-    """
+    """Solve ``mech`` at driver value(s) ``q`` (display units) and evaluate ``names``."""
     names = list(names) if names is not None else report_names(mech)
-    if mech.elements is not None:
-        from linkcli.answers import vibration
-        if q is not None or qdot is not None or qddot is not None or method != "closed":
-            raise InputError("a vibration problem is solved at its equilibrium: no driver "
-                             "values, rates or method to give", file=mech.file)
-        return vibration.evaluate(mech, names, Result(mech))
     solver = solver_for(mech, method, tol)
     base = "angle" if mech.driver.kind == "angle" else "length"
     units = mech.units

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from linkcli.answers.quantities import collect
 from linkcli.errors import InputError, SolveError
 from linkcli.forces import vibration as vib
 from linkcli.forces.lagrange import Lagrangian
@@ -80,7 +81,6 @@ def is_vibration(mech) -> bool:
 
 def evaluate(mech, names, result):
     """Fill ``result`` (values, units) with ``names`` of a vibration problem."""
-    from linkcli.answers.quantities import collect
     for name in names:
         base, order = split_rate(name)
         if order and name not in mech.quantities:

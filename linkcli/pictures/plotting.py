@@ -14,7 +14,8 @@ import tempfile
 
 import numpy as np
 
-from linkcli.answers.quantities import evaluate, report_names
+from linkcli.answers.quantities import report_names
+from linkcli.answers.sheet import evaluate
 from linkcli.pictures.drawing import COLORS, draw_loads, draw_masses, draw_mechanism, draw_polygon, figure
 from linkcli.pictures.drawing import set_limits
 from linkcli.errors import InputError

@@ -1,0 +1,24 @@
+"""The answer sheet of a mechanism file: its report evaluated by the path it needs.
+
+A file with a driver is solved at driver value(s) q (``answers.quantities``);
+a vibration problem, declared with coordinates, at its static equilibrium
+(``answers.vibration``).
+"""
+from __future__ import annotations
+
+from linkcli.answers import quantities, vibration
+from linkcli.answers.quantities import Result
+from linkcli.errors import InputError
+
+
+def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
+             tol=None) -> Result:
+    """Every name of ``names`` (default: the report's) in its display unit."""
+    if not vibration.is_vibration(mech):
+        return quantities.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
+    if q is not None or qdot is not None or qddot is not None or method != "closed":
+        raise InputError("a vibration problem is solved at its static equilibrium: it takes no "
+                         "driver values, rates or method", file=mech.file,
+                         hint="drop q, qdot, qddot and --method")
+    names = list(names) if names is not None else quantities.report_names(mech)
+    return vibration.evaluate(mech, names, Result(mech))

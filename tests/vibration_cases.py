@@ -1,0 +1,160 @@
+"""Small vibration problems with textbook closed forms, shared by the tests.
+
+Each case is YAML text and the closed-form natural frequencies (rad/s) of its
+linearised motion, written from the textbook formula, not from linkcli.
+"""
+from __future__ import annotations
+
+import math
+
+G = 9.81
+
+# compound pendulum: a uniform rod of mass m, length L about one end
+# omega^2 = m g (L/2) / (m L^2 / 3)
+PENDULUM = """
+title: compound pendulum
+units: {length: m, angle: deg}
+params: {L: 1.2, m: 3}
+frame: {O: [0, 0]}
+points: {A: [0.3, -1.16]}
+links: {rod: {points: [O, A], length: L}}
+coordinates: {theta: {angle: [O, A]}}
+dynamics:
+  gravity: 9.81
+  bodies: {rod: {mass: m, inertia: m*L**2/12, center: [L/2, 0]}}
+quantities:
+  w1: {natural_frequency: 1}
+  th: {equilibrium: theta}
+report: {vibration: [w1, th]}
+"""
+PENDULUM_OMEGA = [math.sqrt(3 * G / (2 * 1.2))]
+
+# a uniform disc (mass m, radius R) rolling on the floor, its centre held by a
+# horizontal spring k to a wall: omega^2 = k / (m + J / R^2) = 2 k / (3 m)
+DISC = """
+title: disc rolling on a spring
+units: {length: m, angle: deg}
+params: {R: 0.25, m: 4, kk: 600}
+frame: {W: [-1, 0.25]}
+points: {C: [0.1, 0.25]}
+sliders: {wheel: {point: C, guide: {y: 0.25}}}
+coordinates: {x: {x: C}}
+springs: {k: {between: [W, C], k: kk, free_length: 1.05}}
+dynamics:
+  gravity: 9.81
+  discs: {disc: {center: C, radius: R, mass: m, inertia: m*R**2/2}}
+quantities:
+  w1: {natural_frequency: 1}
+  xe: {equilibrium: x}
+report: {vibration: [w1, xe]}
+"""
+DISC_OMEGA = [math.sqrt(2 * 600 / (3 * 4))]
+
+# two pendulums (point masses m at length l) coupled by a spring k at distance a
+# from the pivots: omega1^2 = g / l, omega2^2 = g / l + 2 k a^2 / (m l^2)
+COUPLED = """
+title: two pendulums coupled by a spring
+units: {length: m, angle: deg}
+params: {l: 0.8, a: 0.5, m: 1.5, kk: 40}
+frame: {O1: [0, 0], O2: [0.6, 0]}
+points: {S1: [0, -a], A1: [0, -l], S2: [0.6, -a], A2: [0.6, -l]}
+links:
+  p1: {points: [O1, S1, A1], shape: {S1: {length: a}, A1: {length: l}}}
+  p2: {points: [O2, S2, A2], shape: {S2: {length: a}, A2: {length: l}}}
+coordinates: {t1: {angle: [O1, A1]}, t2: {angle: [O2, A2]}}
+springs: {k: {between: [S1, S2], k: kk}}
+dynamics:
+  gravity: 9.81
+  masses: {A1: m, A2: m}
+quantities:
+  w1: {natural_frequency: 1}
+  w2: {natural_frequency: 2}
+  u1: {mode_shape: [1, t2]}
+  u2: {mode_shape: [2, t2]}
+report: {vibration: [w1, w2, u1, u2]}
+"""
+COUPLED_OMEGA = [math.sqrt(G / 0.8), math.sqrt(G / 0.8 + 2 * 40 * 0.5 ** 2 / (1.5 * 0.8 ** 2))]
+
+# a rigid bar (mass m, inertia J about its centre G) on two vertical springs
+# k1 at a left of G and k2 at b right of G, in a horizontal plane (no gravity):
+# det([k1 + k2 - m w^2, k2 b - k1 a], [k2 b - k1 a, k1 a^2 + k2 b^2 - J w^2]) = 0
+BAR = """
+title: bar on two springs (bounce and pitch)
+units: {length: m, angle: deg}
+params: {a: 0.9, b: 1.4, m: 30, J: 9, k1: 5000, k2: 3000}
+frame: {F1: [-a, -1], F2: [b, -1]}
+points: {G: [0, 0], P1: [-a, 0], P2: [b, 0]}
+sliders: {hub: {point: G, guide: {x: 0}}}
+links:
+  bar: {points: [G, P2, P1], shape: {P2: {length: b}, P1: {length: a, angle: 180}}}
+coordinates: {y: {y: G}, pitch: {angle: [G, P2]}}
+springs:
+  s1: {between: [F1, P1], k: k1, along: y}
+  s2: {between: [F2, P2], k: k2, along: y}
+dynamics:
+  bodies: {bar: {mass: m, inertia: J, center: G}}
+quantities:
+  w1: {natural_frequency: 1}
+  w2: {natural_frequency: 2}
+report: {vibration: [w1, w2]}
+"""
+
+
+def bar_omega(a=0.9, b=1.4, m=30.0, J=9.0, k1=5000.0, k2=3000.0):
+    """Roots of the bounce-pitch determinant (a quadratic in w^2)."""
+    A = m * J
+    B = -(m * (k1 * a ** 2 + k2 * b ** 2) + J * (k1 + k2))
+    C = (k1 + k2) * (k1 * a ** 2 + k2 * b ** 2) - (k2 * b - k1 * a) ** 2
+    disc = math.sqrt(B * B - 4 * A * C)
+    return [math.sqrt((-B - disc) / (2 * A)), math.sqrt((-B + disc) / (2 * A))]
+
+
+BAR_OMEGA = bar_omega()
+
+CASES = {"pendulum": (PENDULUM, PENDULUM_OMEGA), "disc": (DISC, DISC_OMEGA),
+         "coupled": (COUPLED, COUPLED_OMEGA), "bar": (BAR, BAR_OMEGA)}
+
+# a mass m on a vertical guide, spring k and damper c to the ground, in gravity;
+# harmonic force F0 at Omega, or (SUPPORT) the ground point moved by Y cos(Omega t)
+SDOF = """
+title: mass, spring and damper
+units: {{length: m, angle: deg}}
+params: {{m: {m}, kk: {k}, c: {c}}}
+frame: {{B: [0, 0]}}
+points: {{P: [0, 0.5]}}
+sliders: {{block: {{point: P, guide: {{x: 0}}}}}}
+coordinates: {{y: {{y: P}}}}
+springs: {{k: {{between: [B, P], k: kk, free_length: 0.5}}}}
+dampers: {{r: {{between: [B, P], c: c}}}}
+dynamics: {{gravity: 9.81, masses: {{P: m}}}}
+excitation: {{frequency: {Omega}, forces: {{F: {{at: P, y: {F}}}}}}}
+quantities:
+  w1: {{natural_frequency: 1}}
+  wd: {{damped_frequency: 1}}
+  z1: {{damping_ratio: 1}}
+  X: {{amplitude: y}}
+  ph: {{phase: y}}
+  Ft: {{force_amplitude: [k, r]}}
+  ye: {{equilibrium: y}}
+  N: {{spring_force: k}}
+report: {{vibration: [w1, wd, z1, X, ph, Ft, ye, N]}}
+"""
+
+SUPPORT = """
+title: base excitation
+units: {{length: m, angle: deg}}
+params: {{m: {m}, kk: {k}, c: {c}}}
+frame: {{O: [0, -1]}}
+points: {{B: [0, 0], P: [0, 0.5]}}
+sliders: {{block: {{point: P, guide: {{x: 0}}}}, base: {{point: B, guide: {{x: 0}}}}}}
+coordinates: {{y: {{y: P}}, s: {{y: B}}}}
+springs: {{k: {{between: [B, P], k: kk, free_length: 0.5}}}}
+dampers: {{r: {{between: [B, P], c: c}}}}
+dynamics: {{gravity: 9.81, masses: {{P: m}}}}
+excitation: {{frequency: {Omega}, supports: {{ground: {{coordinate: s, amplitude: {Y}}}}}}}
+quantities:
+  w1: {{natural_frequency: 1}}
+  X: {{amplitude: y}}
+  T: {{transmissibility: y}}
+report: {{vibration: [w1, X, T]}}
+"""

@@ -147,7 +147,8 @@ def loader_only(error: InputError, data) -> bool:
         if detail.startswith("unknown key"):
             return len(parts) == 4 or (len(parts) == 5 and parts[4] in _SHAPE_POINT_KEYS)
     # a load quantity's unit depends on the kind of load (force or torque)
-    if re.match(r"^unknown unit '(N|kN|Nm|Nmm|kNm)' for a load quantity", detail):
+    if re.match(r"^unknown unit '(N|kN|lbf|lb|kip|Nm|Nmm|kNm|lbf ft|lbf in|kip ft)' for a load "
+                r"quantity", detail):
         return True
     # a whole number written with a decimal point (5.0): JSON Schema calls it an integer
     if re.search(r"(digit 0-9|whole number 0-12), got -?\d+\.0$", detail):

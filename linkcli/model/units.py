@@ -10,19 +10,34 @@ import math
 
 from linkcli.errors import InputError
 
-LENGTH = {"m": 1.0, "cm": 0.01, "mm": 0.001, "km": 1000.0}
+# US customary units, exact by definition: ft = 0.3048 m, in = 0.0254 m,
+# lb (mass) = 0.45359237 kg, lbf = lb * 9.80665 m/s^2, slug = lbf s^2 / ft.
+FT = 0.3048
+INCH = 0.0254
+LBF = 0.45359237 * 9.80665
+LB = 0.45359237
+SLUG = LBF / FT
+
+LENGTH = {"m": 1.0, "cm": 0.01, "mm": 0.001, "km": 1000.0, "ft": FT, "in": INCH}
 ANGLE = {"rad": 1.0, "deg": math.pi / 180.0}
-ANGULAR_RATE = {"rad/s": 1.0, "deg/s": math.pi / 180.0, "rpm": 2.0 * math.pi / 60.0}
-FORCE = {"N": 1.0, "kN": 1000.0}
-TORQUE = {"Nm": 1.0, "Nmm": 0.001, "kNm": 1000.0}
-MASS = {"kg": 1.0, "g": 0.001}
-INERTIA = {"kg m^2": 1.0, "kg mm^2": 1e-6}
-STIFFNESS = {"N/m": 1.0, "N/mm": 1000.0, "kN/m": 1000.0}
-TORSIONAL_STIFFNESS = {"Nm/rad": 1.0, "Nmm/rad": 0.001, "Nm/deg": 180.0 / math.pi}
-DAMPING = {"Ns/m": 1.0, "Ns/mm": 1000.0, "kNs/m": 1000.0}
-TORSIONAL_DAMPING = {"Nms/rad": 1.0, "Nmms/rad": 0.001}
+ANGULAR_RATE = {"rad/s": 1.0, "deg/s": math.pi / 180.0, "rpm": 2.0 * math.pi / 60.0,
+                "rev/s": 2.0 * math.pi}
+# "lb" as a force is the pound-force, as books write it; as a mass it is the pound
+FORCE = {"N": 1.0, "kN": 1000.0, "lbf": LBF, "lb": LBF, "kip": 1000.0 * LBF}
+TORQUE = {"Nm": 1.0, "Nmm": 0.001, "kNm": 1000.0, "lbf ft": LBF * FT, "lbf in": LBF * INCH,
+          "kip ft": 1000.0 * LBF * FT}
+MASS = {"kg": 1.0, "g": 0.001, "lb": LB, "slug": SLUG}
+INERTIA = {"kg m^2": 1.0, "kg mm^2": 1e-6, "slug ft^2": SLUG * FT ** 2,
+           "lb ft^2": LB * FT ** 2, "lb in^2": LB * INCH ** 2}
+STIFFNESS = {"N/m": 1.0, "N/mm": 1000.0, "kN/m": 1000.0, "lbf/in": LBF / INCH,
+             "lbf/ft": LBF / FT, "lb/in": LBF / INCH, "lb/ft": LBF / FT}
+TORSIONAL_STIFFNESS = {"Nm/rad": 1.0, "Nmm/rad": 0.001, "Nm/deg": 180.0 / math.pi,
+                       "lbf ft/rad": LBF * FT, "lbf in/rad": LBF * INCH}
+DAMPING = {"Ns/m": 1.0, "Ns/mm": 1000.0, "kNs/m": 1000.0, "lbf s/in": LBF / INCH,
+           "lbf s/ft": LBF / FT}
+TORSIONAL_DAMPING = {"Nms/rad": 1.0, "Nmms/rad": 0.001, "lbf ft s/rad": LBF * FT}
 FREQUENCY = {"rad/s": 1.0, "Hz": 2.0 * math.pi, "rpm": 2.0 * math.pi / 60.0}
-SPEED = {"m/s": 1.0, "km/h": 1.0 / 3.6, "mm/s": 0.001}
+SPEED = {"m/s": 1.0, "km/h": 1.0 / 3.6, "mm/s": 0.001, "ft/s": FT, "mph": 1609.344 / 3600.0}
 TIME = {"s": 1.0, "ms": 0.001}
 
 KINDS = {

@@ -213,22 +213,44 @@ def check(paths, verbose):
 
 @cli.command()
 @click.argument("file")
-@click.option("--sweep", required=True, metavar="FROM:TO:STEPS",
+@click.option("--sweep", default=None, metavar="FROM:TO:STEPS",
               help="Driver values FROM to TO (the file's units) in STEPS intervals.")
-@click.option("--y", "names", multiple=True, required=True, metavar="NAME",
-              help="A quantity of the report (repeat for more panels), e.g. --y c --y cdot.")
+@click.option("--frf", default=None, metavar="FROM:TO:STEPS",
+              help="Vibrations: amplitude and phase against the forcing frequency Omega.")
+@click.option("--modes", is_flag=True, help="Vibrations: the mode shapes on the mechanism.")
+@click.option("--free", default=None, metavar="0:T:STEPS",
+              help="Vibrations: free response from 'initial', linear and nonlinear (s).")
+@click.option("--y", "names", multiple=True, metavar="NAME",
+              help="A quantity of the report (repeat for more panels), e.g. --y c --y cdot; "
+                   "with --frf or --free, coordinates (default: every free one).")
 @K_OPTION
 @click.option("-o", "--output", required=True, help="Picture to write (.png, .svg or .pdf).")
-def plot(file, sweep, names, k, output):
-    """Plot quantities of FILE against the driver over a sweep.
+def plot(file, sweep, frf, modes, free, names, k, output):
+    """Plot quantities of FILE against the driver, or a vibration problem's response.
 
     \b
     Examples:
       linkcli plot mechanisms/polimi-crank-slider.yaml --sweep 0:360:360 --y c --y beta -o pos.png
       linkcli plot mechanisms/fourbar-inverse-dynamics.yaml --sweep 0:360:360 --y Mm -o mm.png
+      linkcli plot mechanisms/polimi-2001-09-18-vibration.yaml --modes -o modes.png
     """
-    from linkcli.pictures.plotting import plot as make
-    make(_load(file, k), sweep, list(names), output)
+    chosen = [flag for flag, value in (("--sweep", sweep), ("--frf", frf), ("--modes", modes),
+                                       ("--free", free)) if value]
+    if len(chosen) != 1:
+        raise InputError("give one of --sweep, --frf, --modes, --free", key="plot",
+                         hint="--sweep FROM:TO:STEPS --y NAME for a mechanism with a driver")
+    mech = _load(file, k)
+    if sweep:
+        from linkcli.pictures.plotting import plot as make
+        make(mech, sweep, list(names), output)
+        return
+    from linkcli.pictures import vibration as pictures
+    if frf:
+        pictures.frf(mech, frf, list(names), output)
+    elif free:
+        pictures.free(mech, free, list(names), output)
+    else:
+        pictures.modes(mech, output)
 
 
 @cli.command()

@@ -104,7 +104,16 @@ def test_number_rule_is_the_evaluators_range(value, ok):
 # --- which loader errors the schema cannot express -----------------------------------------
 _SHAPE_POINT_KEYS = {"angle", "from", "distances", "side"}
 _ALWAYS_LOADER = [           # messages of rules that need the rest of the file
-    r"^undefined (point|link|actuator|load) ",
+    r"^undefined (point|link|actuator|load|coordinate|spring|damper|spring or damper|body) ",
+    r"^a mode is numbered",
+    r"a quantity of the vibration analysis",
+    r"needs a vibration problem",
+    r"belongs to a vibration problem",
+    r"^a 'driver' load needs a driver",
+    r"^a vibration problem has no unknown load",
+    r"^a file has either a driver",
+    r"^a harmonic excitation needs its frequency",
+    r"^the road gives Omega",
     r"is both fixed \(frame\) and moving",
     r"belongs to no link, slider or actuator",
     r"^name '.*' is already",
@@ -125,7 +134,7 @@ _ALWAYS_LOADER = [           # messages of rules that need the rest of the file
 ]
 _VALUE_RULES = [             # loader-only when the value is an expression (text)
     r"in expression '", r"^cannot parse expression", r"^'.*' is too small",
-    r"^must be positive", r"^a driving length must be positive",
+    r"^must be positive", r"^a driving length must be positive", r"must be positive, got",
     r"^printed value .* is not finite",
 ]
 

@@ -374,3 +374,60 @@ report: {position: [q]}
     path, code = _run(tmp_path, text)
     err = capsys.readouterr().err
     assert code == 2 and "key 'springs'" in err and "coordinates" in err
+
+
+# --- pictures ---------------------------------------------------------------------------
+@pytest.mark.parametrize("args", [["--modes"], ["--frf", "1:60:300"], ["--free", "0:1:100"],
+                                  ["--frf", "1:60:300", "--y", "y"]])
+def test_vibration_pictures_are_written(tmp_path, args):
+    pytest.importorskip("matplotlib")
+    path = tmp_path / "sdof.yaml"
+    path.write_text(SDOF.format(m=2, k=800, c=12, Omega=15, F=10) + "initial: {y: 0.01}\n")
+    out = tmp_path / "out.png"
+    assert main(["plot", str(path), *args, "-o", str(out)]) == 0
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert not [p for p in os.listdir(tmp_path) if p.startswith(".linkcli-")]
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--modes", "--frf", "1:2:3"], "give one of --sweep, --frf, --modes, --free"),
+    (["--free", "0:1:10"], "a time response starts from 'initial:'"),
+    (["--frf", "1:60:10", "--y", "nope"], "'nope' is not a free coordinate"),
+])
+def test_vibration_picture_requests_are_checked(tmp_path, capsys, args, message):
+    path = tmp_path / "sdof.yaml"
+    path.write_text(SDOF.format(m=2, k=800, c=12, Omega=15, F=10))
+    assert main(["plot", str(path), *args, "-o", str(tmp_path / "o.png")]) == 2
+    assert message in capsys.readouterr().err
+
+
+def test_frf_of_a_file_without_coordinates_is_refused(tmp_path, capsys):
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    code = main(["plot", os.path.join(root, "mechanisms", "padova-2020-07.yaml"), "--frf", "1:2:3",
+                 "-o", str(tmp_path / "o.png")])
+    assert code == 2 and "vibration problems" in capsys.readouterr().err
+
+
+def test_forced_nonlinear_motion_settles_on_the_linear_amplitude():
+    """A linear system (spring along its guide): after the transient, the integrated motion
+    oscillates with the steady-state amplitude of the frequency response."""
+    lin = vib.linearise(lagrangian(SDOF.format(m=2, k=800, c=40, Omega=15, F=10)))
+    t = np.linspace(0, 6, 6001)
+    x = vib.simulate(lin, [0.0], [0.0], t, forced=True)[:, 0]
+    late = x[t > 4.5]
+    X = abs(vib.response(lin, 15.0)[0])
+    assert 0.5 * (late.max() - late.min()) == pytest.approx(X, rel=1e-4)
+
+
+def test_explain_writes_the_energies_and_the_linearised_system(capsys):
+    root = os.path.dirname(os.path.abspath(__file__))
+    import tempfile
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "d.yaml")
+        open(path, "w").write(DOUBLE)
+        assert main(["explain", path]) == 0
+    out = capsys.readouterr().out
+    for text in ("coordinate phi = angle of O->A", "T = 1/2 2 |v_A|^2 + 1/2 2 |v_B|^2",
+                 "Lagrange's equations", "phi = 270 deg (free)", "M (kg m^2) =",
+                 "mode 1: omega = 10.559 rad/s"):
+        assert text in out, text

@@ -16,10 +16,11 @@ def explain(mech) -> str:
              f"  prismatic pairs P = {count.p}: " + (", ".join(
                  f"{name} ({b1}-{b2})" for name, b1, b2 in count.prismatics) or "none"),
              f"  {count.formula()}", "", "Decomposition and solving order"]
-    d = mech.driver
-    what = {"angle": f"angle of {d.a}->{d.b}", "length": f"length {d.a}{d.b}",
-            "x": f"x of {d.a}", "y": f"y of {d.a}"}[d.kind]
-    lines.append(f"  driver q = {what}")
+    if len(mech.coordinates) > 1 or mech.elements is not None:
+        for c in mech.coordinates:
+            lines.append(f"  coordinate {c.name} = {_what(c)}")
+    else:
+        lines.append(f"  driver q = {_what(mech.driver)}")
     step = 0
     for group in solver.groups:
         if group.kind == "place":
@@ -31,12 +32,20 @@ def explain(mech) -> str:
         lines.append(f"  {step}. {group.describe()}{branch}")
     if any(b.kind == "block" and b.guide.carrier != FRAME for b in mech.bodies.values()):
         lines.append("  (sliders on moving guides add Coriolis terms to the accelerations)")
-    if mech.dynamics is not None:
+    if mech.elements is not None:
+        from linkcli.answers.vibration import explain_lines
+        lines += [""] + explain_lines(mech)
+    elif mech.dynamics is not None:
         from linkcli.forces.balance import balance_lines
         lines += [""] + balance_lines(mech)
     else:
         lines += ["", "Statics by virtual work: sum of load powers = 0"] + _statics_terms(mech)
     return "\n".join(lines)
+
+
+def _what(d) -> str:
+    return {"angle": f"angle of {d.a}->{d.b}", "length": f"length {d.a}{d.b}",
+            "x": f"x of {d.a}", "y": f"y of {d.a}"}[d.kind]
 
 
 def _statics_terms(mech) -> list:

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.errors import SolveError
+from linkcli.errors import InputError, SolveError
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import REPORT_SECTIONS, split_rate
 from linkcli.forces.statics import unknown_load
@@ -55,9 +55,19 @@ def report_names(mech):
     return names
 
 
+def require_driver(mech, what: str) -> None:
+    """Refuse a request that varies the driver on a file declared with coordinates."""
+    if mech.elements is not None or len(mech.coordinates) > 1:
+        raise InputError(f"{what} varies the driver, and this file declares coordinates "
+                         "(a vibration problem) instead", file=mech.file,
+                         hint="use 'linkcli solve', or 'linkcli plot' with --frf, --modes or "
+                         "--free")
+
+
 def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
              tol=None) -> Result:
     """Solve ``mech`` at driver value(s) ``q`` (display units) and evaluate ``names``."""
+    require_driver(mech, "solving at driver values")
     names = list(names) if names is not None else report_names(mech)
     solver = solver_for(mech, method, tol)
     base = "angle" if mech.driver.kind == "angle" else "length"

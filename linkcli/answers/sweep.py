@@ -23,7 +23,7 @@ import numpy as np
 from linkcli.errors import AssemblyError, InputError
 from linkcli.kinematics.closed_form import SINGULAR, Kinematics
 from linkcli.model.mechanism import split_rate
-from linkcli.answers.quantities import collect, needed_orders, report_names
+from linkcli.answers.quantities import collect, needed_orders, report_names, require_driver
 from linkcli.kinematics.solvers import solver_for
 
 MAX_POSITIONS = 10 ** 7
@@ -126,6 +126,7 @@ def check_names(mech, names) -> list:
 
 def sweep(mech, q, names=None, method="closed", tol=None, qdot=None, qddot=None) -> Sweep:
     """Solve ``mech`` at every driver value of ``q`` (display units, 1-D)."""
+    require_driver(mech, "a sweep")
     solver = solver_for(mech, method, tol)
     names = check_names(mech, names)
     units = mech.units

@@ -129,6 +129,15 @@ def _coordinate_unit(mech, j):
     return unit, (ANGLE if base == "angle" else LENGTH)[unit]
 
 
+def _coordinate_value(mech, j, q):
+    """(value, unit) of coordinate j of ``q`` (SI) in its display unit; angles in [0, 360)."""
+    unit, factor = _coordinate_unit(mech, j)
+    value = q[j] / factor
+    if mech.coordinates[j].base == "angle":
+        value = value % (360.0 if unit == "deg" else 2 * np.pi)
+    return float(value), unit
+
+
 def _mode(analysis, quantity) -> int:
     k = int(quantity.a) - 1
     count = len(analysis.lin.free)
@@ -168,12 +177,7 @@ def value_of(analysis: Analysis, quantity):
         bases = (mech.coordinates[i].base, mech.coordinates[j].base)
         return float(matrix[i, j]), MATRIX_UNITS[kind][bases]
     if kind == "equilibrium":
-        j = _coordinate(mech, quantity.a)
-        unit, factor = _coordinate_unit(mech, j)
-        value = lin.eq.q[j] / factor
-        if mech.coordinates[j].base == "angle":
-            value = value % (360.0 if unit == "deg" else 2 * np.pi)
-        return float(value), unit
+        return _coordinate_value(mech, _coordinate(mech, quantity.a), lin.eq.q)
     if kind == "spring_force":
         spring = mech.elements.springs[quantity.a]
         return float(lin.eq.terms.forces[quantity.a]), \
@@ -218,7 +222,10 @@ def value_of(analysis: Analysis, quantity):
         return float(abs(amp)) / factor, unit
     if kind == "phase":
         angle_unit = mech.units.names["angle"]
-        return float(np.angle(amp)) / ANGLE[angle_unit], angle_unit
+        phase = float(np.angle(amp))
+        if phase <= -np.pi + 1e-12:        # in (-180, 180]: opposition is +180, whatever 0's sign
+            phase += 2 * np.pi
+        return phase / ANGLE[angle_unit], angle_unit
     # transmissibility: |response| / |imposed amplitude|
     if not lin.imposed:
         raise InputError(f"'{quantity.name}': a transmissibility needs a support motion",
@@ -226,3 +233,91 @@ def value_of(analysis: Analysis, quantity):
                          hint="for a harmonic force, ask force_amplitude of the springs and "
                          "dampers that hold the support, and divide by the force")
     return float(abs(amp) / np.max(np.abs(lin.supports))), ""
+
+
+# --- explain ---------------------------------------------------------------------------
+def _matrix(name, matrix, names, unit) -> list:
+    width = max(len(n) for n in names)
+    rows = [f"  {name} ({unit}) =" if unit else f"  {name} ="]
+    for label, row in zip(names, matrix):
+        rows.append(f"    {label:<{width}} [" + "  ".join(f"{v:>12.6g}" for v in row) + " ]")
+    return rows
+
+
+def _units_of(mech, free, kind):
+    bases = {mech.coordinates[j].base for j in free}
+    return MATRIX_UNITS[kind][(bases.pop(),) * 2] if len(bases) == 1 else "SI"
+
+
+def explain_lines(mech) -> list:
+    """Energies, Lagrange's equations, the equilibrium and the linearised system, with
+    the numbers (SI), as the worked solutions write them."""
+    analysis = analyse(mech)
+    lin = analysis.lin
+    lag = lin.lag
+    names = [c.name for c in mech.coordinates]
+    dyn = mech.dynamics
+    el = mech.elements
+    lines = ["Energies (SI units; s is each element's measure, s0 its free value)"]
+    kinetic = []
+    for m in lin.eq.terms.masses:
+        term = f"1/2 {m.mass:.6g} |v_{m.name}|^2"
+        if m.theta is not None and m.inertia:
+            term += f" + 1/2 {m.inertia:.6g} omega_{m.name}^2"
+        kinetic.append(term)
+    lines.append("  T = " + (" + ".join(kinetic) or "0"))
+    potential = [f"1/2 {s.stiffness:.6g} ({s.measure.text()} - {lag.free[s.name]:.6g})^2"
+                 for s in el.springs.values()]
+    if dyn is not None and dyn.gravity:
+        g = dyn.gravity
+        potential += [f"- {m.mass:.6g} ({g.real:.6g}, {g.imag:.6g}) . G_{m.name}"
+                      for m in lin.eq.terms.masses]
+    potential += [f"- {load.name} (work of the constant load)" for load in mech.loads.values()]
+    lines.append("  V = " + (" ".join(("+ " + p) if not p.startswith("-") else p
+                                       for p in potential).lstrip("+ ") or "0"))
+    lines.append("  D = " + (" + ".join(f"1/2 {d.coefficient:.6g} (d/dt {d.measure.text()})^2"
+                                       for d in el.dampers.values()) or "0"))
+    lines += ["", "Lagrange's equations, one per coordinate q_i:",
+              "  d/dt dT/dq_i' - dT/dq_i + dD/dq_i' + dV/dq_i = F_i(t)",
+              "  i.e. M(q) q'' + c(q, q') + R(q) q' = Q(q) + F(t),  Q = -dV/dq"]
+    eq = lin.eq
+    lines += ["", "Static equilibrium (" + ("the figure" if el.equilibrium == "figure"
+                                            else "solved from the figure") + ")"]
+    for j, c in enumerate(mech.coordinates):
+        value, unit = _coordinate_value(mech, j, eq.q)
+        state = "imposed" if j in lin.imposed else "free"
+        lines.append(f"  {c.name} = {value:.6g} {unit} ({state})")
+    for name, force in eq.terms.forces.items():
+        chosen = " (chosen so that the figure is an equilibrium)" if name in eq.preloads else ""
+        lines.append(f"  spring {name}: force N = {force:.6g}{chosen}")
+    lines.append(f"  residual |Q| = {eq.relative:.2e} of the load scale")
+    free_names = [names[j] for j in lin.free]
+    lines += ["", "Linearised about the equilibrium: M x'' + R x' + K x = F e^{i Omega t}"]
+    lines += _matrix("M", lin.M, free_names, _units_of(mech, lin.free, "mass_matrix"))
+    lines += _matrix("K", lin.K, free_names, _units_of(mech, lin.free, "stiffness_matrix"))
+    if len(lin.free) == 1:
+        lines.append(f"  one degree of freedom: m* = {lin.M[0, 0]:.6g}, k* = {lin.K[0, 0]:.6g}"
+                     + (f", r* = {lin.R[0, 0]:.6g}" if el.dampers else "")
+                     + " (reduced mass or inertia, stiffness, damping)")
+    if el.dampers:
+        lines += _matrix("R", lin.R, free_names, _units_of(mech, lin.free, "damping_matrix"))
+    if lin.frequency is not None:
+        amps = lin.load(lin.frequency)
+        lines.append(f"  Omega = {lin.frequency:.6g} rad/s, F = [" +
+                     ", ".join(f"{abs(a):.6g} at {np.degrees(np.angle(a)):.4g} deg"
+                               for a in amps) + "]")
+    try:
+        modes = analysis.modes()
+    except SolveError as exc:
+        return lines + ["", f"  {exc.detail}"]
+    lines += ["", "Natural frequencies and modes (K u = omega^2 M u)"]
+    for k, w in enumerate(modes.omega):
+        shape = ", ".join(f"{free_names[i]} {modes.shapes[i, k]:.6g}" for i in range(len(free_names)))
+        lines.append(f"  mode {k + 1}: omega = {w:.6g} rad/s = {w / (2 * np.pi):.6g} Hz; "
+                     f"shape {shape}")
+    if el.dampers:
+        d = analysis.damped()
+        for k in range(len(d.zeta)):
+            lines.append(f"  damped {k + 1}: zeta = {d.zeta[k]:.6g}, "
+                         f"omega_d = {d.omega_d[k]:.6g} rad/s")
+    return lines

@@ -94,6 +94,10 @@ class Lagrangian:
 
     def measure(self, jt, m: el.Measure) -> jac.Scalar:
         if m.kind == "distance":
+            if np.any(jt.pos[m.a] == jt.pos[m.b]):
+                raise SolveError(f"an element between {m.a} and {m.b} has no direction: the two "
+                                 "points coincide", file=self.mech.file,
+                                 hint="check the points' positions and the element's ends")
             return jac.distance(jt, m.a, m.b)
         if m.kind == "along":
             return jac.along(jt, m.a, m.b, m.direction)
@@ -159,6 +163,10 @@ class Lagrangian:
             s = measures[damper.name] = self.measure(jt, damper.measure)
             R += damper.coefficient * np.outer(s.grad, s.grad)
         V += self._loads(jt, Q, K)
+        if not all(np.all(np.isfinite(x)) for x in (M, K, R, Q)):
+            raise SolveError("the energies are not finite numbers at this configuration: the "
+                             "data overflow floating-point arithmetic", file=self.mech.file,
+                             hint="check the magnitudes of masses, stiffnesses and lengths")
         return Terms(q, M, K, R, Q, V, forces, measures, masses, jt)
 
     def _loads(self, jt, Q, K) -> float:

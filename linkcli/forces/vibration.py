@@ -198,15 +198,18 @@ def free_response(lin: Linear, x0, v0, times):
     return np.array([(expm(A * t) @ z0)[:n] for t in times])
 
 
-def simulate(lin: Linear, x0, v0, times, rtol=1e-10, atol=1e-13):
+def simulate(lin: Linear, x0, v0, times, forced=False, rtol=1e-10, atol=1e-13):
     """The nonlinear equations of motion integrated from q_e + x0 with rates v0 (free
-    coordinates); returns x(t) - the offsets from equilibrium - at ``times``."""
+    coordinates), free or (``forced``) under the excitation; returns x(t), the offsets
+    from equilibrium, at ``times``."""
     from scipy.integrate import solve_ivp
     lag = lin.lag
-    free, imposed = lin.free, lin.imposed
+    free = lin.free
+    imposed = lin.imposed if forced else []
     q_e = lin.eq.q
-    omega = lin.frequency or 0.0
-    forces = lag.elements.forces if lag.elements else {}
+    omega = (lin.frequency or 0.0) if forced else 0.0
+    forces = lag.elements.forces if forced and lag.elements else {}
+    supports = lin.supports if forced else np.zeros(0)
 
     def rhs(t, z):
         nf = len(free)
@@ -216,14 +219,14 @@ def simulate(lin: Linear, x0, v0, times, rtol=1e-10, atol=1e-13):
         q[free], qd[free] = q_e[free] + z[:nf], z[nf:]
         if imposed:
             e = np.exp(1j * omega * t)
-            q[imposed] += np.real(lin.supports * e)
-            qd[imposed] = np.real(1j * omega * lin.supports * e)
-            qdd_s = np.real(-omega ** 2 * lin.supports * e)
+            q[imposed] += np.real(supports * e)
+            qd[imposed] = np.real(1j * omega * supports * e)
+            qdd_s = np.real(-omega ** 2 * supports * e)
         terms = lag.terms(q)
         rhs_q = terms.Q - terms.R @ qd - lag.convective(terms, qd)
         if forces:
             rhs_q = rhs_q + np.real(lag.forcing(terms.jet) * np.exp(1j * omega * t))
-        rhs_f = rhs_q[free] - terms.M[np.ix_(free, imposed)] @ qdd_s
+        rhs_f = rhs_q[free] - (terms.M[np.ix_(free, imposed)] @ qdd_s if imposed else 0.0)
         acc = np.linalg.solve(terms.M[np.ix_(free, free)], rhs_f)
         return np.concatenate([z[nf:], acc])
 

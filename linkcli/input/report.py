@@ -21,10 +21,13 @@ class AnswersSection:
             quantities["y" + p] = Quantity("y" + p, "y", p)
         for name, load in loads.items():
             quantities[name] = Quantity(name, "load", name)
+        self.failed = set()
         for name, value in spec.items():
             q = self.block(self.quantity, name, value, pool, loads, driver)
             if q is not None:
                 quantities[name] = q
+            else:
+                self.failed.add(name)
         return quantities
 
     def quantity(self, name, value, pool, loads, driver=None) -> Quantity:
@@ -77,6 +80,8 @@ class AnswersSection:
         arg = value[kind]
         coords = self.vibration.get("coordinates", [])
         unit = value.get("unit")
+        if unit is not None and not isinstance(unit, str):
+            raise self.error(path + ("unit",), f"unit is a unit name, got {unit!r}")
         if unit is not None:
             if kind not in ("natural_frequency", "damped_frequency", "forcing_frequency"):
                 raise self.error(path + ("unit",), f"{kind} is given in fixed units",
@@ -165,6 +170,8 @@ class AnswersSection:
         if section == "points":
             self.name(name, path, pool)
             return True
+        if split_rate(name)[0] in getattr(self, "failed", ()):
+            return False            # its definition's error is reported already
         order = {"position": 0, "velocity": 1, "acceleration": 2, "statics": 0,
                  "vibration": 0}[section]
         base = split_rate(name)

@@ -7,8 +7,9 @@ line widths and drawing order (``zorder``).
 from __future__ import annotations
 
 from linkcli.errors import InputError
-from linkcli.pictures.scene import (actuators, arrow_tail, axial_arrows, blocks, ground_symbol, grounds,
-                    gravity_arrow, links, loads, mass_centres, pivots, torque_arrow, vectors)
+from linkcli.pictures.scene import (actuators, arrow_tail, axial_arrows, blocks, dashpot,
+                                    element_ends, ground_symbol, grounds, gravity_arrow, links,
+                                    loads, mass_centres, pivots, torque_arrow, vectors, zigzag)
 
 COLORS = ["#1f77b4", "#2ca02c", "#9467bd", "#8c564b", "#17becf", "#bcbd22", "#ff7f0e",
           "#7f7f7f", "#e377c2"]
@@ -85,6 +86,28 @@ def draw_mechanism(ax, scene, dyn=None, labels=True, spins=None):
     _blocks(ax, scene, dyn, spins or {})
     _grounds(ax, scene)
     _pivots(ax, scene, labels)
+
+
+def draw_outline(ax, scene, color):
+    """The links and actuators of ``scene`` as thin lines of one colour (a displaced pose)."""
+    for pts in links(scene):
+        _line(ax, pts + ([pts[0]] if len(pts) > 2 else []), color=color, lw=1.6, zorder=5)
+    for a, _, b, _ in actuators(scene):
+        _line(ax, [a, b], color=color, lw=1.6, zorder=5)
+
+
+def draw_elements(ax, scene, elements):
+    """Springs as zigzags and dampers as dashpots between their points, with their names."""
+    for kind, name, a, b in element_ends(scene, elements):
+        if kind == "spring":
+            _line(ax, zigzag(a, b, scene.size), color="#333333", lw=1.2, zorder=4)
+        else:
+            rod, cup, piston = dashpot(a, b, scene.size)
+            _line(ax, rod, color="#333333", lw=1.2, zorder=4)
+            _line(ax, cup, color="#333333", lw=1.2, zorder=4)
+            _line(ax, piston, color="#333333", lw=2.0, zorder=4)
+        _text(ax, (a + b) / 2 + 0.04 * scene.size * 1j, name, fontsize=8, ha="center",
+              va="bottom", zorder=7)
 
 
 def _links(ax, scene):

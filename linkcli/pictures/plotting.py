@@ -14,9 +14,10 @@ import tempfile
 
 import numpy as np
 
-from linkcli.answers.quantities import report_names
+from linkcli.answers.quantities import report_names, require_driver
 from linkcli.answers.sheet import evaluate
-from linkcli.pictures.drawing import COLORS, draw_loads, draw_masses, draw_mechanism, draw_polygon, figure
+from linkcli.pictures.drawing import (COLORS, draw_elements, draw_loads, draw_masses,
+                                      draw_mechanism, draw_polygon, figure)
 from linkcli.pictures.drawing import set_limits
 from linkcli.errors import InputError
 from linkcli.kinematics.solvers import solver_for
@@ -140,6 +141,7 @@ def _save_figure(fig, path) -> None:
 def plot(mech, sweep: str, names, output: str, dpi: int = 100) -> None:
     """Quantities ``names`` against the driver over ``sweep``, one panel each."""
     check_output(output, IMAGE_FORMATS)
+    require_driver(mech, "a plot against the driver")
     check_names(mech, names)
     q = parse_sweep(sweep)
     result = evaluate(mech, q=q, names=list(dict.fromkeys(names)))
@@ -201,7 +203,7 @@ def draw(mech, output: str, dpi: int = 100) -> None:
     """The mechanism at the file's driver value, with its vector polygon and loads."""
     check_output(output, IMAGE_FORMATS)
     dyn = mech.dynamics
-    kin = _positions(mech, mech.driver.value)
+    kin = _positions(mech, figure_coordinates(mech))
     scene = Scene(mech, kin.pos)
     values, units_text = _load_values(mech)
     fig = figure(8.0, 6.5, dpi)
@@ -212,18 +214,26 @@ def draw(mech, output: str, dpi: int = 100) -> None:
     draw_polygon(ax, scene)
     draw_loads(ax, scene, values, units_text)
     draw_masses(ax, scene, dyn, kin.pos)
+    draw_elements(ax, scene, mech.elements)
     what, q_unit, q_factor = _driver_text(mech)
-    _axes_text(ax, scene, _wrap(mech.title) +
-               f"\nq = {what} = {mech.driver.value / q_factor:.4g} {q_unit}", 10)
+    subtitle = f"q = {what} = {mech.driver.value / q_factor:.4g} {q_unit}" \
+        if len(mech.coordinates) == 1 and mech.elements is None else "as in the figure"
+    _axes_text(ax, scene, _wrap(mech.title) + "\n" + subtitle, 10)
     ax.set_ylabel(f"y [{scene.l_unit}]")
     fig.tight_layout()
     _save_figure(fig, output)
 
 
+def figure_coordinates(mech):
+    """The coordinates' figure values, as the solver takes them (SI)."""
+    values = [c.value for c in mech.coordinates]
+    return values[0] if len(values) == 1 else tuple(values)
+
+
 def _load_values(mech):
     """({load: value}, {load: unit}) at the file's position, for the loads that are solved."""
     values, units_text = {}, {}
-    if mech.loads:
+    if mech.loads and mech.elements is None:
         result = evaluate(mech, names=list(mech.loads))
         for name in mech.loads:
             if name in result.values:
@@ -235,6 +245,7 @@ def _load_values(mech):
 def animate(mech, output: str, sweep: str | None = None, fps: int = 12, dpi: int = 80) -> int:
     """The motion over ``sweep`` as an animated GIF (pillow writer); returns the frame count."""
     check_output(output, ("gif",))
+    require_driver(mech, "an animation")
     dyn = mech.dynamics
     if sweep is None:
         q = parse_sweep(default_sweep(mech))[:-1]       # a full turn: the last frame is the first

@@ -362,3 +362,44 @@ def disc_turns(mech, dyn, kin) -> dict:
         shift = (np.conj(u) * (c - c[0])).real
         out[disc.name] = np.broadcast_to(-disc.side * shift / disc.radius, c.shape)
     return out
+
+
+# --- springs and dampers -------------------------------------------------------------------
+def zigzag(a: complex, b: complex, size: float, teeth: int = 7) -> list:
+    """A spring drawn from ``a`` to ``b``: straight ends, ``teeth`` zigzags between."""
+    z = b - a
+    if abs(z) == 0:
+        return [a, b]
+    u = z / abs(z)
+    amp = 0.025 * size * 1j * u
+    start, end = a + 0.15 * z, a + 0.85 * z
+    pts = [a, start]
+    for i in range(1, 2 * teeth):
+        pts.append(start + (end - start) * i / (2 * teeth) + (amp if i % 2 else -amp))
+    return pts + [end, b]
+
+
+def dashpot(a: complex, b: complex, size: float):
+    """A damper from ``a`` to ``b``: (rod, cup outline, piston) as point lists."""
+    z = b - a
+    if abs(z) == 0:
+        return [a, b], [a], [b]
+    u = z / abs(z)
+    w = 0.03 * size * 1j * u
+    mid = a + 0.5 * z
+    cup = [mid + 0.12 * z + w, mid - 0.12 * z + w, mid - 0.12 * z - w, mid + 0.12 * z - w]
+    piston = [mid + 0.02 * z + 0.8 * w, mid + 0.02 * z - 0.8 * w]
+    return [a, mid - 0.12 * z, mid + 0.02 * z, b], cup, piston
+
+
+def element_ends(scene, elements) -> list:
+    """(kind, name, a, b) of every spring and damper joining two points."""
+    out = []
+    if elements is None:
+        return out
+    for kind, group in (("spring", elements.springs), ("damper", elements.dampers)):
+        for name, e in group.items():
+            m = e.measure
+            if m.kind in ("distance", "along") and m.a in scene.p and m.b in scene.p:
+                out.append((kind, name, scene.p[m.a], scene.p[m.b]))
+    return out

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.forces import motion as dyn_mod
-from linkcli.errors import SingularError, SolveError
+from linkcli.errors import SingularError, SolveError, StructureError
 from linkcli.forces.friction import coefficients, friction_force, normal_factors, sliding_signs
 from linkcli.forces.newton_euler import System
 from linkcli.forces.pairs import PairForce
@@ -38,6 +38,10 @@ def solve(mech, kin) -> Reactions:
 
     ``kin`` needs positions; velocities with friction; accelerations with masses.
     """
+    if mech.rolling:
+        raise StructureError("joint forces are not modelled for rolling contacts and cords "
+                             f"({', '.join(mech.rolling)})", file=mech.file,
+                             hint="the loads by virtual work and the vibrations do not need them")
     dyn = mech.dynamics
     system = System(mech, dyn, kin)
     rhs = -system.known()

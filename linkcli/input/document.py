@@ -15,6 +15,7 @@ from linkcli.model.units import Units
 from linkcli.input.source import Document
 from linkcli.input.report import SECTIONS, AnswersSection
 from linkcli.input.bodies import BodiesSection
+from linkcli.input.contacts import ContactsSection
 from linkcli.input.dynamics import DynamicsReader
 from linkcli.input.elements import ElementsReader
 from linkcli.input.loads import LoadsSection
@@ -22,14 +23,15 @@ from linkcli.input.reader import NAME, UNKNOWN, InputErrors, Reader, _kind, _Ski
 
 TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points", "links",
             "actuators", "sliders", "driver", "coordinates", "loads", "quantities", "report",
-            "keys", "dynamics", "springs", "dampers", "excitation", "initial", "equilibrium"}
+            "keys", "dynamics", "springs", "dampers", "excitation", "initial", "equilibrium",
+            "rolling", "cords"}
 VIBRATION_KEYS = ("springs", "dampers", "excitation", "initial", "equilibrium")
 
 __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS", "UNKNOWN",
            "NAME", "_Skip"]
 
 
-class Parser(Reader, BodiesSection, LoadsSection, AnswersSection):
+class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSection):
     """The whole document: units, params, frame and points, then each section."""
 
     def parse(self) -> Mechanism:
@@ -50,6 +52,7 @@ class Parser(Reader, BodiesSection, LoadsSection, AnswersSection):
         self.block(self.links, data, units, pool, bodies)
         actuators = self.block(self.actuators, data, pool, bodies) or {}
         self.block(self.sliders, data, units, pool, bodies, fixed)
+        rolling = self.block(self.contacts, data, units, pool, bodies, fixed, moving) or {}
         coordinates = ()
         self.file_units = units
         if "coordinates" in data:
@@ -81,7 +84,7 @@ class Parser(Reader, BodiesSection, LoadsSection, AnswersSection):
         mech = Mechanism(title=title, file=self.doc.name, k=self.k, units=units,
                          fixed=fixed, moving=moving, bodies=bodies, actuators=actuators,
                          driver=driver, loads=loads, quantities=quantities, report=report,
-                         keys=keys, coordinates=coordinates)
+                         keys=keys, coordinates=coordinates, rolling=rolling)
         if coordinates:
             mech.elements = ElementsReader(self, mech, _Skip).run(data)
             for load in loads.values():

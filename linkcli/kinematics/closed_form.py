@@ -94,12 +94,16 @@ class Solver:
                     if best is None or dist < best[0]:
                         best = (dist, branch)
                 group.branch = best[1]
+            if group.kind == "roll":
+                group.place = rolling_reference(group, pos, self.mech)
             if group.point is not None:
                 pos[group.point] = self._position(group, pos, q)[0]
 
     # positions -------------------------------------------------------------------
     def _position(self, group, pos, q):
         kind = group.kind
+        if kind == "roll":
+            return self._roll_position(group, pos), None
         if kind == "place":
             k, m, n, w = group.place
             return pos[k] + (pos[m] - pos[n]) * w, None
@@ -132,6 +136,15 @@ class Solver:
         if kind == "RPR":
             return dyads.slotted(pos[c1.a], c1.length, pos[c2.p], c2.value, group.branch)
         return None, None
+
+    def _roll_position(self, group, pos):
+        """The marker M = C + d e^{i (theta0 + sum c_k (mu_k - mu_k0))} of a rolling disc."""
+        r = group.constraints[0]
+        arm, theta0, terms = group.place
+        theta = theta0
+        for term, c, mu0 in terms:
+            theta = theta + c * term.relative(pos, mu0)
+        return pos[r.center] + arm * np.exp(1j * theta)
 
     @staticmethod
     def _length(dist, q):
@@ -202,6 +215,15 @@ class Solver:
         if group.kind == "place":
             k, m, n, w = group.place
             return _get(d, k) + (_get(d, m) - _get(d, n)) * w
+        if group.kind == "roll":
+            r = group.constraints[0]
+            _, _, terms = group.place
+            arm = pos[group.point] - pos[r.center]
+            omega = sum(c * term.rate(pos, kin.vel if vel is not None else d) for term, c, _ in terms)
+            if vel is None:
+                return _get(d, r.center) + 1j * omega * arm
+            alpha = sum(c * term.accel(pos, vel, d) for term, c, _ in terms)
+            return _get(d, r.center) + (1j * alpha - omega * omega) * arm
         if group.kind == "driver-angle":
             pivot = group.constraints[0]
             arm = pos[group.point] - pos[pivot]
@@ -251,6 +273,83 @@ class Solver:
                 raise singular_error(self.mech, self.groups[index], kin.q,
                                      np.broadcast_to(bad, kin.shape), measure,
                                      "sine of the angle between its constraint directions")
+
+
+# --- rolling contacts -------------------------------------------------------------------
+@dataclass(frozen=True)
+class Along:
+    """mu = Re(conj(u) (P_a - P_b)) (``b`` None: of P_a alone); linear in the points."""
+
+    u: complex
+    a: str
+    b: str | None = None
+
+    def value(self, pos):
+        z = pos[self.a] - (pos[self.b] if self.b else 0)
+        return (np.conj(self.u) * z).real
+
+    def relative(self, pos, mu0):
+        return self.value(pos) - mu0
+
+    def rate(self, pos, d):
+        return (np.conj(self.u) * (_get(d, self.a) - (_get(d, self.b) if self.b else 0))).real
+
+    def accel(self, pos, vel, acc):
+        return self.rate(pos, acc)
+
+
+@dataclass(frozen=True)
+class AngleOf:
+    """mu = arg(P_b - P_a), measured from its figure value within half a turn."""
+
+    a: str
+    b: str
+
+    def value(self, pos):
+        return pos[self.b] - pos[self.a]
+
+    def relative(self, pos, z0):
+        return np.angle(self.value(pos) * np.conj(z0))
+
+    def rate(self, pos, d):
+        return ((_get(d, self.b) - _get(d, self.a)) / self.value(pos)).imag
+
+    def accel(self, pos, vel, acc):
+        z = self.value(pos)
+        w = (_get(vel, self.b) - _get(vel, self.a)) / z
+        return ((_get(acc, self.b) - _get(acc, self.a)) / z - w * w).imag
+
+
+def rolling_terms(r, mech):
+    """[(measure, coefficient)] with omega_disc = sum c mu' (see ``model.Rolling``)."""
+    if r.kind == "line":
+        return [(Along(r.direction, r.center), r.side / r.radius)]
+    if r.kind == "cord":
+        return [(Along(r.direction, r.center, r.point), r.side / r.radius)]
+    ratio = -(r.track_radius - r.radius) / r.radius if r.inside else \
+        (r.track_radius + r.radius) / r.radius
+    terms = [(AngleOf(r.track, r.center), ratio)]
+    if r.kind == "disc":
+        other = mech.bodies[r.other]
+        spin = (1.0 if r.inside else -1.0) * r.track_radius / r.radius
+        terms.append((AngleOf(other.points[0], other.points[1]), spin))
+    return terms
+
+
+def rolling_reference(group, pos, mech):
+    """(arm, theta0, [(measure, c, mu0)]) of a rolling disc from the assembled figure:
+    the marker's distance and figure angle about the centre, each measure's figure value."""
+    r = group.constraints[0]
+    body = mech.bodies[r.disc]
+    marker = group.point
+    arm = abs(body.local[marker] - body.local[r.center])
+    centre = complex(np.ravel(pos[r.center])[0])
+    theta0 = np.angle(mech.moving.get(marker, mech.fixed.get(marker, 0j)) - centre)
+    terms = []
+    for term, c in rolling_terms(r, mech):
+        ref = term.value({k: complex(np.ravel(v)[0]) for k, v in pos.items()})
+        terms.append((term, c, ref))
+    return arm, theta0, terms
 
 
 def assembly_error(mech, group, q, bad, worst, reason) -> AssemblyError:

@@ -1,8 +1,9 @@
 """Topology: Grübler's count and the Assur decomposition.
 
-Grübler (planar): ``n = 3 (m - 1) - 2 R - 2 P`` with m bodies (frame
-included), R revolute pairs (at a point shared by j bodies there are j - 1)
-and P prismatic pairs (one per slider block, one per actuator).
+Grübler (planar): ``n = 3 (m - 1) - 2 R - 2 P - H`` with m bodies (frame
+included), R revolute pairs (at a point shared by j bodies there are j - 1),
+P prismatic pairs (one per slider block, one per actuator) and H higher pairs
+(a disc rolling without slipping, a taut cord on a pulley).
 
 The decomposition is topology only: starting from the frame and the driver it
 repeatedly finds a moving point fixed by two constraints from known bodies
@@ -56,7 +57,7 @@ class Coord:
 class Group:
     """One step of the solving order."""
 
-    kind: str              # driver-angle | driver-coord | RRR | RRP | PRR | PRP | RPR | place | RPR-actuator
+    kind: str              # driver-angle | driver-coord | RRR | RRP | PRR | PRP | RPR | place | RPR-actuator | roll
     point: str | None      # the point it solves (None: nothing to solve)
     constraints: tuple = ()
     bodies: tuple = ()
@@ -79,6 +80,8 @@ class Group:
             return f"driver: slider {self.bodies[0]}, {self.note}"
         if self.kind == "RPR-actuator":
             return f"dyad RPR: actuator {self.bodies[0]} between known points {self.note}"
+        if self.kind == "roll":
+            return f"{self.bodies[0]} turned by {self.note}"
         return f"dyad {self.kind}: {self.point} from {self.note} [{', '.join(self.bodies)}]" + (
             " (driven)" if self.driver else "")
 
@@ -88,6 +91,7 @@ class Grubler:
     bodies: list
     revolutes: list        # (point, bodies at it)
     prismatics: list       # (name, body1, body2)
+    higher: list = field(default_factory=list)   # rolling contacts and cords, by name
 
     @property
     def m(self) -> int:
@@ -102,10 +106,17 @@ class Grubler:
         return len(self.prismatics)
 
     @property
+    def h(self) -> int:
+        return len(self.higher)
+
+    @property
     def dof(self) -> int:
-        return 3 * (self.m - 1) - 2 * self.r - 2 * self.p
+        return 3 * (self.m - 1) - 2 * self.r - 2 * self.p - self.h
 
     def formula(self) -> str:
+        if self.h:
+            return (f"n = 3(m - 1) - 2R - 2P - H = 3({self.m} - 1) - 2*{self.r} - 2*{self.p} - "
+                    f"{self.h} = {self.dof}")
         return (f"n = 3(m - 1) - 2R - 2P = 3({self.m} - 1) - 2*{self.r} - 2*{self.p} = "
                 f"{self.dof}")
 
@@ -129,7 +140,7 @@ def grubler(mech: Mechanism) -> Grubler:
     prismatics = [(a.name, a.name + ".cylinder", a.name + ".rod") for a in mech.actuators.values()]
     prismatics += [(b.name, b.name, b.guide.carrier) for b in mech.bodies.values()
                    if b.kind == "block"]
-    return Grubler(bodies, revolutes, prismatics)
+    return Grubler(bodies, revolutes, prismatics, list(mech.rolling))
 
 
 def one_dof(mech: Mechanism) -> Grubler:
@@ -161,6 +172,7 @@ class _Decomposer:
         self.known_bodies = {FRAME}
         self.groups: list[Group] = []
         self.pending = dict(enumerate(mech.coordinates))
+        self.rolling_discs = {r.disc for r in mech.rolling.values()}
         self.driven: dict = {}             # {a, b} -> coordinate of a driving length
         self.done_actuators: set = set()
 
@@ -252,11 +264,38 @@ class _Decomposer:
     # one step ------------------------------------------------------------------
     def step(self) -> bool:
         return self.drivers() or self.place() or self.dyad() or self.rpr() or \
-            self.actuator()
+            self.actuator() or self.roll()
+
+    def roll(self) -> bool:
+        """A disc whose centre is known, turned by its rolling contact or cord."""
+        for r in self.mech.rolling.values():
+            body = self.mech.bodies[r.disc]
+            if body.name in self.known_bodies or r.center not in self.known:
+                continue
+            if r.kind == "cord" and r.point not in self.known or \
+                    r.kind == "disc" and r.other not in self.known_bodies:
+                continue
+            marker = body.points[1]
+            if marker in self.known:
+                raise self.fail(f"disc {r.disc} is turned both by {r.name} and by the links at "
+                                f"{marker}", hint="a rolling disc's points other than its "
+                                "centre may carry springs and masses, not other links")
+            what = {"line": "rolling on a fixed line", "cord": f"the cord to {r.point}",
+                    "circle": f"rolling {'inside' if r.inside else 'outside'} the circle about "
+                              f"{r.track}",
+                    "disc": f"rolling {'inside' if r.inside else 'outside'} disc {r.other}"}
+            self.groups.append(Group("roll", marker, (r,), (r.disc,),
+                                     note=f"{r.name} ({what[r.kind]})"))
+            self.known.add(marker)
+            self.settle(body, [r.center, marker])
+            return True
+        return False
 
     def place(self) -> bool:
         for body in self.mech.bodies.values():
             if body.name in self.known_bodies:
+                continue
+            if body.name in self.rolling_discs:
                 continue
             known = [p for p in body.points if p in self.known]
             if body.kind == "link" and len(known) >= 2 or body.kind in ("cylinder", "rod") \
@@ -301,7 +340,8 @@ class _Decomposer:
         """Constraints on unknown point ``p`` from bodies whose pose follows from one known point."""
         found = []
         for body in self.mech.bodies.values():
-            if p not in body.points or body.name in self.known_bodies:
+            if p not in body.points or body.name in self.known_bodies or \
+                    body.name in self.rolling_discs:
                 continue
             if body.kind == "link":
                 known = [a for a in body.points if a in self.known]

@@ -58,6 +58,41 @@ class Actuator:
 
 
 @dataclass(frozen=True)
+class Rolling:
+    """A disc that rolls without slipping, or a pulley that a taut cord turns.
+
+    The disc is the link ``disc`` whose first point ``center`` is its centre;
+    ``radius`` its rolling radius.  What it rolls on (``kind``):
+
+    - 'line': a fixed line of unit direction ``direction``, the centre on its
+      ``side`` (+1 left, -1 right): omega = -side (v_C . u) / r;
+    - 'cord': a straight cord leaving the pulley along ``direction`` towards
+      ``point`` P, from its ``side``: the cord is a line moving with P,
+      omega = -side ((v_C - v_P) . u) / r;
+    - 'circle': a fixed circle of centre ``track`` and radius ``track_radius``,
+      ``inside`` or outside: omega = -(R - r)/r psi' inside, (R + r)/r psi' outside,
+      psi the angle of C about the centre;
+    - 'disc': the disc ``other`` (its first point its centre) of radius
+      ``track_radius``: as the circle, plus -/+ (R / r) omega_other (outside/inside).
+
+    Each contact takes one degree of freedom (a higher pair in Grübler's count).
+    """
+
+    name: str
+    disc: str
+    center: str
+    radius: float
+    kind: str
+    direction: complex = 1 + 0j
+    side: int = 1
+    point: str | None = None
+    track: str | None = None
+    track_radius: float = 0.0
+    inside: bool = False
+    other: str | None = None
+
+
+@dataclass(frozen=True)
 class Driver:
     """An independent coordinate: the driver q of a 1-DOF file, or one of ``coordinates``.
 
@@ -171,6 +206,7 @@ class Mechanism:
     keys: tuple = ()
     dynamics: Dynamics | None = None   # the ``dynamics:`` section, None when absent
     coordinates: tuple = ()            # every independent coordinate; (driver,) for 1 DOF
+    rolling: dict = field(default_factory=dict)   # name -> Rolling (contacts and cords)
     elements: Elements | None = None   # springs, dampers, forcing: None when absent
 
     def __post_init__(self):

@@ -1,0 +1,146 @@
+"""Parsing of rolling contacts and cords: ``rolling`` and ``cords`` (a mixin of the Parser).
+
+    rolling:
+      r1: {disc: wheel, radius: 100, on: {line: x, side: left}}     # on a fixed line along x
+      r2: {disc: wheel, radius: 100, on: {circle: O, radius: 500}}  # inside or outside a track
+      r3: {disc: planet, radius: 50, on: {disc: sun, radius: 150}}  # on another disc
+    cords:
+      c1: {pulley: drum, radius: 80, to: P, along: -y, side: left}  # a taut cord from drum to P
+
+The disc (or pulley) is a link whose first point is its centre.  Whether a
+disc is inside or outside a circle is read from the figure unless ``inside``
+is given; a cord must be taut and tangent in the figure.
+"""
+from __future__ import annotations
+
+import cmath
+import math
+
+from linkcli.model.mechanism import FRAME, Rolling
+
+SIDES = {"left": 1, "right": -1}
+#: relative tolerance of the figure checks (the figure is approximate)
+FIGURE_TOL = 0.02
+
+
+class ContactsSection:
+    def contacts(self, data, units, pool, bodies, fixed, moving) -> dict:
+        out = {}
+        figure = {**fixed, **moving}
+        self.fixed_points = set(fixed)
+        self.length_unit = (units.names["length"], units.factor("length"))
+        for key, reader in (("rolling", self.rolling_entry), ("cords", self.cord_entry)):
+            spec = self.mapping(self.get(data, (), key, required=False, default={}) or {},
+                                (key,))
+            for name, value in spec.items():
+                path = (key, name)
+                if name in out:
+                    self.error(path, f"'{name}' names a rolling contact already")
+                    continue
+                entry = self.block(reader, name, value, path, units, bodies, figure)
+                if entry is not None:
+                    out[name] = entry
+        used = {}
+        for entry in out.values():
+            if entry.disc in used:
+                self.error(("rolling" if entry.kind != "cord" else "cords", entry.name),
+                           f"disc {entry.disc} already rolls ({used[entry.disc]})",
+                           hint="a disc has one rolling contact or cord")
+            used[entry.disc] = entry.name
+        return out
+
+    def disc_body(self, value, path, bodies):
+        links = {n for n, b in bodies.items() if b.kind == "link"}
+        name = self.name(value, path, links, "link")
+        return name, bodies[name].points[0]
+
+    def direction(self, value, path, units) -> complex:
+        """x, -x, y, -y or an angle (counter-clockwise from +x)."""
+        axes = {"x": 1 + 0j, "-x": -1 + 0j, "y": 1j, "-y": -1j}
+        if isinstance(value, str) and value in axes:
+            return axes[value]
+        return cmath.exp(1j * self.number(value, path, "angle", units))
+
+    def side(self, spec, path) -> int:
+        side = spec.get("side", "left")
+        if side not in SIDES:
+            raise self.error(path + ("side",), f"side is 'left' or 'right', got {side!r}")
+        return SIDES[side]
+
+    def rolling_entry(self, name, value, path, units, bodies, figure) -> Rolling:
+        self.name(name, path, what="rolling contact")
+        spec = self.mapping(value, path, {"disc", "radius", "on"}, ("disc", "radius", "on"))
+        disc, center = self.disc_body(spec["disc"], path + ("disc",), bodies)
+        radius = self.positive(spec["radius"], path + ("radius",), units)
+        on = self.mapping(spec["on"], path + ("on",))
+        kinds = [k for k in ("line", "circle", "disc") if k in on]
+        if len(kinds) != 1:
+            raise self.error(path + ("on",), "give one of line, circle, disc")
+        where = path + ("on",)
+        if kinds[0] == "line":
+            self.mapping(on, where, {"line", "side"})
+            u = self.direction(on["line"], where + ("line",), units)
+            # the centre is on `side` of the line: the contact is on the other side
+            return Rolling(name, disc, center, radius, "line", u, -self.side(on, where))
+        allowed = {"circle", "disc", "radius", "inside"}
+        self.mapping(on, where, allowed, ("radius",))
+        track_radius = self.positive(on["radius"], where + ("radius",), units)
+        if kinds[0] == "circle":
+            track = self.name(on["circle"], where + ("circle",),
+                              {p for p in figure if p in self.fixed_points}, "fixed point")
+            other = None
+        else:
+            other, track = self.disc_body(on["disc"], where + ("disc",), bodies)
+            if other == disc:
+                raise self.error(where + ("disc",), "a disc cannot roll on itself")
+        inside = self.inside(on, where, figure[center], figure[track], radius, track_radius)
+        return Rolling(name, disc, center, radius, kinds[0], track=track,
+                       track_radius=track_radius, inside=inside, other=other)
+
+    def inside(self, on, path, c, o, r, big) -> bool:
+        """Inside or outside the track: given, or the figure's distance |C - O| nearer
+        R - r or R + r (and within FIGURE_TOL of it)."""
+        d = abs(c - o)
+        unit, f = self.length_unit
+        if "inside" in on:
+            inside = on["inside"]
+            if not isinstance(inside, bool):
+                raise self.error(path + ("inside",), f"inside is true or false, got {inside!r}")
+        else:
+            inside = abs(d - (big - r)) < abs(d - (big + r))
+        expected = big - r if inside else big + r
+        if inside and big <= r:
+            raise self.error(path + ("radius",), f"a disc of radius {r / f:.6g} {unit} does not "
+                             f"fit inside a track of radius {big / f:.6g} {unit}")
+        if abs(d - expected) > FIGURE_TOL * big:
+            raise self.error(path, f"in the figure the centres are {d / f:.6g} {unit} apart, but "
+                             f"a disc rolling {'inside' if inside else 'outside'} is at "
+                             f"{expected / f:.6g} {unit} (R {'-' if inside else '+'} r)",
+                             hint="check the radii and the figure's positions")
+        return inside
+
+    def cord_entry(self, name, value, path, units, bodies, figure) -> Rolling:
+        self.name(name, path, what="cord")
+        spec = self.mapping(value, path, {"pulley", "radius", "to", "along", "side"},
+                            ("pulley", "radius", "to", "along"))
+        disc, center = self.disc_body(spec["pulley"], path + ("pulley",), bodies)
+        radius = self.positive(spec["radius"], path + ("radius",), units)
+        point = self.name(spec["to"], path + ("to",), set(figure))
+        u = self.direction(spec["along"], path + ("along",), units)
+        side = self.side(spec, path)
+        tangent = figure[center] + side * radius * 1j * u
+        z = figure[point] - tangent
+        run = (z * u.conjugate()).real
+        size = max(abs(z), radius)
+        if run <= 0:
+            raise self.error(path + ("to",), f"the cord is not taut in the figure: {point} is not "
+                             f"ahead of the pulley along the cord's direction",
+                             hint="'along' is the direction from the pulley to the point")
+        if abs((z * u.conjugate()).imag) > FIGURE_TOL * size:
+            unit, f = self.length_unit
+            raise self.error(path + ("to",), f"the cord is not tangent in the figure: {point} is "
+                             f"{abs((z * u.conjugate()).imag) / f:.4g} {unit} off the tangent line "
+                             "from the "
+                             f"{'left' if side > 0 else 'right'} of the pulley",
+                             hint="check 'side', 'along' and the radius")
+        return Rolling(name, disc, center, radius, "cord", u, side, point=point)

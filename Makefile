@@ -39,6 +39,7 @@ check: $(VENV)/.installed
 ## bench: speed against accuracy (table and chart in benchmarks/out/)
 bench: $(VENV)/.installed-test
 	$(BIN)/python benchmarks/speed_accuracy.py
+	$(BIN)/python benchmarks/vibration.py
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache benchmarks/out

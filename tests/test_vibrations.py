@@ -431,3 +431,16 @@ def test_explain_writes_the_energies_and_the_linearised_system(capsys):
                  "Lagrange's equations", "phi = 270 deg (free)", "M (kg m^2) =",
                  "mode 1: omega = 10.559 rad/s"):
         assert text in out, text
+
+
+def test_resonance_reached_in_floating_point_is_refused():
+    """Omega = sqrt(k/m) rounded: K - Omega^2 M cancels to rounding, never a huge amplitude."""
+    text = SDOF.format(m=3, k=1000, c=12, Omega=math.sqrt(1000 / 3), F=10).replace(
+        "dampers: {r: {between: [B, P], c: c}}", "").replace("Ft: {force_amplitude: [k, r]}",
+                                                             "Ft: {force_amplitude: [k]}")
+    with pytest.raises(linkcli.LinkcliError, match="at resonance at Omega = 18.2574"):
+        linkcli.loads(text).solve(names=["X"])
+    # slightly off resonance it is answered, with the closed-form amplitude
+    off = text.replace(f"frequency: {math.sqrt(1000 / 3)}", "frequency: 18.2")
+    X = float(linkcli.loads(off).solve(names=["X"]).values["X"])
+    assert X == pytest.approx(10 / abs(1000 - 3 * 18.2 ** 2), rel=1e-12)

@@ -31,6 +31,8 @@ from linkcli.forces.lagrange import Lagrangian, require_mass
 
 #: an eigenvalue of K below -UNSTABLE times the largest is a loss of stability
 UNSTABLE = 1e-9
+#: a dynamic matrix whose Hadamard ratio is below this is singular (resonance)
+SINGULAR = 1e-13
 
 
 @dataclass
@@ -161,19 +163,30 @@ def damped(lin: Linear) -> Damped:
     return Damped(np.array(wn), np.array(zeta), np.array(wd))
 
 
+def dynamic_matrix(lin: Linear, omega):
+    """D(Omega) = K - Omega^2 M + i Omega R for each Omega, and where D is singular:
+    |det D| against the product over the rows of the magnitudes of their terms
+    (sum_j |K_ij| + Omega^2 |M_ij| + Omega |R_ij|) below SINGULAR, an undamped resonance.
+    The ratio is dimensionless and sees the cancellation of K against Omega^2 M."""
+    w = np.asarray(omega, dtype=float)[..., None, None]
+    D = lin.K - w ** 2 * lin.M + 1j * w * lin.R
+    scale = np.abs(lin.K) + w ** 2 * np.abs(lin.M) + w * np.abs(lin.R)
+    rows = np.prod(np.sum(scale, axis=-1), axis=-1)
+    ratio = np.abs(np.linalg.det(D)) / np.where(rows > 0, rows, 1.0)
+    return D, ratio < SINGULAR
+
+
 def response(lin: Linear, omega):
     """Steady-state complex amplitudes X (..., n_free) at the forcing frequency (ies) omega."""
     omega = np.asarray(omega, dtype=float)
-    D = lin.K - omega[..., None, None] ** 2 * lin.M + 1j * omega[..., None, None] * lin.R
-    F = lin.load(omega)
-    F = np.broadcast_to(F, D.shape[:-1])
-    cond = np.linalg.cond(D)
-    if np.any(~np.isfinite(cond) | (cond > 1e14)):
-        bad = float(np.atleast_1d(omega)[np.argmax(np.atleast_1d(~np.isfinite(cond) | (cond > 1e14)))])
+    D, singular = dynamic_matrix(lin, omega)
+    if np.any(singular):
+        bad = float(np.atleast_1d(omega)[np.argmax(np.atleast_1d(singular))])
         raise SolveError(f"the undamped system is at resonance at Omega = {bad:.6g} rad/s: the "
                          "steady-state amplitude is unbounded", file=lin.lag.mech.file,
                          hint="add damping, or move the forcing frequency away from the natural "
                          "frequencies")
+    F = np.broadcast_to(lin.load(omega), D.shape[:-1])
     return np.linalg.solve(D, F[..., None])[..., 0]
 
 

@@ -7,6 +7,8 @@ solved.
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 
 class LinkcliError(Exception):
     """Base class of every error linkcli raises on purpose."""
@@ -86,3 +88,37 @@ class SingularError(SolveError):
         self.group = group
         self.q = q
         self.measure = measure
+
+
+class NoWorkError(SingularError):
+    """The unknown load does no work at some driver values (a dead centre for it):
+    ``rows`` marks them, ``measure`` is the smallest normalised coefficient ratio."""
+
+    def __init__(self, detail: str, *, load: str = "", rows=None, **kw):
+        super().__init__(detail, **kw)
+        self.load = load
+        self.rows = rows
+
+
+@dataclass
+class Caution:
+    """A result that is given, but that the reader must look at: a figure far from the
+    solved position, an ambiguous or forced branch, a contact that lifts off.
+
+    ``kind`` names the case; ``points`` maps the points concerned to a number (a
+    distance, in the file's length unit, or a force) where one applies.
+    """
+
+    kind: str
+    detail: str
+    file: str | None = None
+    points: dict | None = None
+
+    def located(self, file: str | None) -> "Caution":
+        if self.file is None and file is not None:
+            self.file = file
+        return self
+
+    def __str__(self) -> str:
+        label = "error" if self.kind == "unassembled" else "warning"
+        return f"{self.file}: {label}: {self.detail}" if self.file else f"{label}: {self.detail}"

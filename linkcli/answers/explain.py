@@ -30,9 +30,12 @@ def explain(mech) -> str:
             lines.append(f"       then {group.describe()}")
             continue
         step += 1
-        branch = f"  (branch {'+' if group.branch > 0 else '-'} as in the figure)" \
+        drawn = "as in the figure" if not solver.undetermined else "not determined by the figure"
+        branch = f"  (branch {'+' if group.branch > 0 else '-'} {drawn})" \
             if group.kind in ("RRR", "RRP", "PRR", "RPR") else ""
         lines.append(f"  {step}. {group.describe()}{branch}")
+    from linkcli.answers.validate import figure_cautions
+    lines += [f"  {c}" for c in figure_cautions(mech)]
     if any(b.kind == "block" and b.guide.carrier != FRAME for b in mech.bodies.values()):
         lines.append("  (sliders on moving guides add Coriolis terms to the accelerations)")
     if mech.elements is not None:

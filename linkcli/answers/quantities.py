@@ -30,6 +30,7 @@ class Result:
     points: dict = field(default_factory=dict)       # name -> (x, y) in length units
     kinematics: object = None
     analysis: object = None                          # the vibration analysis, if any
+    cautions: list = field(default_factory=list)     # warnings to print with the results
 
     @property
     def k(self):
@@ -84,7 +85,11 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
         solver.check(kin, velocities=True)
     if order >= 2:
         solver.accelerations(kin, qdd_si)
-    return collect(mech, solver, kin, names)
+    result = collect(mech, solver, kin, names)
+    if q is None:       # the file's own position: what the figure check says of it
+        from linkcli.answers.validate import figure_cautions
+        result.cautions = figure_cautions(mech) if method == "closed" else []
+    return result
 
 
 def collect(mech, solver, kin, names) -> Result:
@@ -129,7 +134,8 @@ def _loads(mech, solver, kin, names):
     if mech.dynamics is not None:   # inertia, gravity, friction (d'Alembert)
         from linkcli.forces.balance import dynamic_power
         extra = dynamic_power(mech, kin, unit_kin)
-    values[unknown.name] = unknown_load(mech, kin.pos, unit_kin.vel, extra_power=extra)
+    values[unknown.name] = unknown_load(mech, kin.pos, unit_kin.vel, extra_power=extra,
+                                        q=kin.q)
     return values
 
 

@@ -80,7 +80,25 @@ def validate_file(path: str, k: int | None = None) -> Validation:
     dyads = sum(1 for g in topology.groups if g.is_dyad or g.kind == "RPR-actuator")
     plural = "s" if dyads != 1 else ""
     result.summary = f"Grübler n = {topology.grubler.dof}, {dyads} dyad{plural}"
+    cautions = figure_cautions(mech)
+    result.problems = [str(c.located(name)) for c in cautions]
+    if any(c.kind == "unassembled" for c in cautions):
+        result.exit_code = 3          # solve cannot answer at the file's own position
+    elif result.problems:
+        result.summary += f", {len(result.problems)} warning{'s' if len(result.problems) != 1 else ''}"
     return result
+
+
+def figure_cautions(mech) -> list:
+    """What the figure check found: the figure far from the solved position, an ambiguous or
+    forced branch, a figure that cannot be assembled (the branch is then undetermined)."""
+    from linkcli.errors import Caution
+    from linkcli.kinematics.solvers import solver_for
+    solver = solver_for(mech)
+    out = list(solver.cautions)
+    if solver.undetermined:
+        out.insert(0, Caution("unassembled", solver.undetermined, mech.file))
+    return out
 
 
 def _other_digits(doc, default_k, errors: list) -> dict:

@@ -31,7 +31,8 @@ def balance(mech, q=None) -> dict:
     default the file's), with the unknown load's value (SI) and E (J)."""
     dyn = mech.dynamics
     kin, unit = state(mech, q)
-    value = unknown_load(mech, kin.pos, unit.vel, extra_power=dynamic_power(mech, kin, unit))
+    value = unknown_load(mech, kin.pos, unit.vel, extra_power=dynamic_power(mech, kin, unit),
+                         q=kin.q)
     rate = mech.driver.rate
     motor = value * coefficient(mech, mech.unknown_load(), kin.pos, unit.vel) * rate
     lost = -friction_power(mech, dyn, kin, kin.vel, solve(mech, kin)) \

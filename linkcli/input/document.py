@@ -84,7 +84,8 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
         mech = Mechanism(title=title, file=self.doc.name, k=self.k, units=units,
                          fixed=fixed, moving=moving, bodies=bodies, actuators=actuators,
                          driver=driver, loads=loads, quantities=quantities, report=report,
-                         keys=keys, coordinates=coordinates, rolling=rolling)
+                         keys=keys, coordinates=coordinates, rolling=rolling,
+                         as_drawn=self.k_override is None or self.k_override == data.get("k"))
         if coordinates:
             mech.elements = ElementsReader(self, mech, _Skip).run(data)
             for load in loads.values():

@@ -23,10 +23,49 @@ import numpy as np
 
 from linkcli.kinematics import dyads
 from linkcli.kinematics.dyads import cross
-from linkcli.errors import AssemblyError, InputError, SingularError
+from linkcli.errors import AssemblyError, Caution, InputError, SingularError
 from linkcli.kinematics.topology import Dist, Line, analyse
 
 SINGULAR = 1e-9
+#: dyads with an assembly branch to choose
+BRANCHED = ("RRR", "RRP", "PRR", "RPR")
+#: a solved point farther than FAR times the mechanism's size from its figure position is
+#: reported; a figure point whose distances to the two assemblies differ by less than
+#: AMBIGUOUS times their separation is reported as ambiguous
+FAR = 0.05
+AMBIGUOUS = 0.1
+#: the most steps the search for an assembling combination of branches takes
+SEARCH = 4096
+
+
+def figure_coordinates(mech):
+    """The coordinates measured on the figure's points (the driver's, or each declared one)
+    as the solver takes them: the configuration the figure draws."""
+    figure = {**mech.fixed, **mech.moving}
+    values = []
+    for c in mech.coordinates:
+        if len(mech.coordinates) > 1 or mech.elements is not None:
+            values.append(c.value)          # coordinates are measured on the figure already
+            continue
+        if c.kind == "angle":
+            values.append(float(np.angle(figure[c.b] - figure[c.a])))
+        elif c.kind == "length":
+            values.append(abs(figure[c.b] - figure[c.a]))
+        else:
+            z = figure[c.a]
+            values.append(z.real if c.kind == "x" else z.imag)
+    return values[0] if len(values) == 1 else tuple(values)
+
+
+def _fails(short) -> bool:
+    """Whether a group's shortfall says it cannot be assembled (None: nothing to close)."""
+    return short is not None and bool(np.any(np.asarray(short) > 0))
+
+
+def own_coordinates(mech):
+    """The file's own coordinate values (the driver's ``value``)."""
+    values = [c.value for c in mech.coordinates]
+    return values[0] if len(values) == 1 else tuple(values)
 
 
 @dataclass
@@ -48,6 +87,7 @@ class Kinematics:
     acc: dict = field(default_factory=dict)
     short: dict = field(default_factory=dict)     # group index -> shortfall (m) array
     measure: dict = field(default_factory=dict)   # group index -> conditioning array
+    flat: dict = field(default_factory=dict)      # group index -> toggle within rounding
     linear: dict = field(default_factory=dict, repr=False)  # group index -> rate-system inverse
     vectors: dict = field(default_factory=dict, repr=False)  # (a, b) -> (z, z'/z) for reports
 
@@ -79,25 +119,175 @@ class Solver:
 
     # branches ------------------------------------------------------------------
     def _choose_branches(self):
-        """Pick each dyad's assembly branch nearest to the figure's positions."""
+        """Each dyad's assembly branch as in the figure, chosen once.
+
+        The branches are chosen where the figure is drawn: at the coordinates measured on
+        the figure's points (so that another driver value, another digit k, keeps the
+        figure's assembly).  Going down the groups, each dyad takes the branch nearest its
+        figure point; when a later dyad cannot close, the earlier choices are searched
+        for the assembling combination nearest the figure, and the forced choice is
+        reported.  ``cautions`` lists what the reader should check.
+        """
+        self.cautions = []
+        self.undetermined = None
+        dyads = [g for g in self.groups if g.kind in BRANCHED]
+        figure = self._coords(figure_coordinates(self.mech), "q")
+        found = self._search(figure)
+        if found is None:
+            found = self._search(self._coords(own_coordinates(self.mech), "q"))
+        if found is None:
+            for g in dyads:
+                g.branch = 1
+            self.undetermined = self._unassembled(figure)
+            self._place_all(figure)
+            return
+        branches, forced = found
+        for g, b in zip(dyads, branches):
+            g.branch = b
+        self._place_all(figure)
+        if forced:
+            self.cautions.append(Caution("branch", forced, self.mech.file))
+        self.cautions += self._ambiguous(figure) + self._far(self.mech)
+
+    def _place_all(self, q):
+        """Positions at ``q`` with the chosen branches, setting the rolling references."""
         pos = dict(self.fixed)
-        q = self._coords([c.value for c in self.mech.coordinates] if self.n > 1
-                         else self.mech.driver.value, "q")
         for group in self.groups:
-            if group.kind in ("RRR", "RRP", "PRR", "RPR"):
-                target = self.mech.moving[group.point]
-                best = None
-                for branch in (1, -1):
-                    group.branch = branch
-                    p, _ = self._position(group, pos, q)
-                    dist = abs(complex(p) - target)
-                    if best is None or dist < best[0]:
-                        best = (dist, branch)
-                group.branch = best[1]
             if group.kind == "roll":
                 group.place = rolling_reference(group, pos, self.mech)
             if group.point is not None:
                 pos[group.point] = self._position(group, pos, q)[0]
+        return pos
+
+    def _candidates(self, group, pos, q):
+        """[(distance to the figure point, branch, position, assembles)] of a dyad."""
+        target = self.mech.moving[group.point]
+        out = []
+        for branch in (1, -1):
+            group.branch = branch
+            p, short, *_ = self._position(group, pos, q)
+            p = complex(np.ravel(p)[0])
+            ok = not _fails(short)
+            out.append((abs(p - target), branch, p, ok))
+        return sorted(out, key=lambda c: c[0])
+
+    def _search(self, q):
+        """(branches, forced text) of the assembling combination nearest the figure, found
+        nearest-first with backtracking; None when no combination assembles at ``q``."""
+        groups = self.groups
+        best = {}
+
+        def walk(i, pos, chosen):
+            """Depth first, each dyad's nearer branch first: the first complete assembly
+            (at most SEARCH steps: a structure that needs more is left undetermined)."""
+            best["steps"] = best.get("steps", 0) + 1
+            if best["steps"] > SEARCH:
+                return False
+            if i == len(groups):
+                best["chosen"] = list(chosen)
+                return True
+            group = groups[i]
+            if group.kind not in BRANCHED:
+                if group.kind == "roll":
+                    group.place = rolling_reference(group, pos, self.mech)
+                if group.point is not None:
+                    p, short, *_ = self._position(group, pos, q)
+                    if _fails(short):
+                        return False
+                    pos = {**pos, group.point: p}
+                return walk(i + 1, pos, chosen)
+            for rank, (_, branch, p, ok) in enumerate(self._candidates(group, pos, q)):
+                if not ok:
+                    continue
+                chosen.append((group, branch, rank))
+                if walk(i + 1, {**pos, group.point: p}, chosen):
+                    return True
+                chosen.pop()
+            return False
+
+        walk(0, dict(self.fixed), [])
+        if "chosen" not in best:
+            return None
+        farther = [g for g, _, rank in best["chosen"] if rank]
+        forced = ""
+        if farther:
+            names = ", ".join(g.describe() for g in farther)
+            forced = (f"{names} assembled on the branch farther from the figure: on the nearer "
+                      "one a later group cannot close")
+        return [b for _, b, _ in best["chosen"]], forced
+
+    def _unassembled(self, q):
+        """The text of the first group that cannot close at the figure's coordinates."""
+        pos = dict(self.fixed)
+        for group in self.groups:
+            if group.kind == "roll":
+                group.place = rolling_reference(group, pos, self.mech)
+            if group.point is None:
+                continue
+            p, short, *_ = self._position(group, pos, q)
+            if _fails(short):
+                worst = float(np.max(short))
+                return (f"the figure's position cannot be assembled: {group.describe()} falls "
+                        f"short by {length_text(self.mech, worst)}; the assembly branch is "
+                        "not determined (+ taken)")
+            pos[group.point] = p
+        return "the figure's position cannot be assembled; the assembly branch is not determined"
+
+    def _ambiguous(self, q) -> list:
+        """Dyads whose figure point is nearly as far from both assemblies (AMBIGUOUS of the
+        distance between them)."""
+        out = []
+        pos = dict(self.fixed)
+        for group in self.groups:
+            if group.kind == "roll":
+                group.place = rolling_reference(group, pos, self.mech)
+            if group.kind in BRANCHED:
+                keep = group.branch
+                (d1, _, p1, _), (d2, _, p2, _) = self._candidates(group, pos, q)
+                group.branch = keep
+                gap = abs(p1 - p2)
+                if gap > 0 and abs(d1 - d2) < AMBIGUOUS * gap:
+                    unit, f = self.mech.units.display("length", 0)
+                    out.append(Caution(
+                        "ambiguous", f"the figure's {group.point} is nearly as far from both "
+                        f"assemblies of {group.describe()} ({d1 / f:.4g} and {d2 / f:.4g} "
+                        f"{unit}): the branch may not be the one drawn", self.mech.file,
+                        {group.point: d1 / f}))
+            if group.point is not None:
+                pos[group.point] = self._position(group, pos, q)[0]
+        return out
+
+    def _far(self, mech) -> list:
+        """Points solved far from the figure at the file's own coordinates (more than FAR
+        of the mechanism's size), when the file is solved for the digit it draws."""
+        if not mech.as_drawn:
+            return []
+        q = self._coords(own_coordinates(mech), "q")
+        kin = self.positions(q)
+        pos = kin.pos
+        for index, short in kin.short.items():
+            if np.any(short > 0):
+                group = self.groups[index]
+                worst = float(np.max(short))
+                reason = "the links are parallel" if not np.isfinite(worst) else \
+                    f"falls short by {length_text(mech, worst)}"
+                return [Caution("unassembled", f"the file's own position cannot be assembled: "
+                                f"{group.describe()} {where_text(mech, kin.q, True)} {reason} "
+                                "(the branch is the figure's)", mech.file)]
+        points = [complex(np.ravel(z)[0]) for z in pos.values()]
+        size = max(abs(z - sum(points) / len(points)) for z in points) or 1.0
+        unit, f = mech.units.display("length", 0)
+        far = {p: abs(complex(np.ravel(pos[p])[0]) - mech.moving[p]) for p in mech.moving
+               if p in pos}
+        far = {p: d for p, d in far.items() if d > FAR * size}
+        if not far:
+            return []
+        listed = ", ".join(f"{p} by {d / f:.4g} {unit}" for p, d in
+                           sorted(far.items(), key=lambda item: -item[1]))
+        return [Caution("figure", f"the solved position is far from the figure ({FAR:.0%} of "
+                        f"the mechanism's size is {FAR * size / f:.4g} {unit}): {listed}; "
+                        "check the lengths, the shapes and the driver's points",
+                        mech.file, {p: d / f for p, d in far.items()})]
 
     # positions -------------------------------------------------------------------
     def _position(self, group, pos, q):
@@ -123,18 +313,19 @@ class Solver:
         c1, c2 = group.constraints
         if kind == "RRR":
             return dyads.circle_circle(pos[c1.a], self._length(c1, q), pos[c2.a],
-                                       self._length(c2, q), group.branch)
+                                       self._length(c2, q), group.branch, flat=True)
         if kind in ("RRP", "PRR"):
             dist, line = (c1, c2) if kind == "RRP" else (c2, c1)
             return dyads.circle_line(pos[dist.a], self._length(dist, q), pos[line.b],
-                                     pos[line.c], line.value, group.branch)
+                                     pos[line.c], line.value, group.branch, flat=True)
         if kind == "PRP":
             u1, e1 = dyads.line_frame(pos[c1.b], pos[c1.c], c1.value)
             u2, e2 = dyads.line_frame(pos[c2.b], pos[c2.c], c2.value)
             p, parallel = dyads.line_line(pos[c1.b], u1, e1, pos[c2.b], u2, e2)
             return p, np.where(parallel, np.inf, 0.0)
         if kind == "RPR":
-            return dyads.slotted(pos[c1.a], c1.length, pos[c2.p], c2.value, group.branch)
+            return dyads.slotted(pos[c1.a], c1.length, pos[c2.p], c2.value, group.branch,
+                                 flat=True)
         return None, None
 
     def _roll_position(self, group, pos):
@@ -172,10 +363,12 @@ class Solver:
         for index, group in enumerate(self.groups):
             if group.point is None:
                 continue
-            p, short = self._position(group, pos, q)
+            p, short, *flat = self._position(group, pos, q)
             pos[group.point] = p
             if short is not None:
                 kin.short[index] = short
+            if flat and np.any(flat[0]):
+                kin.flat[index] = flat[0]
         return kin
 
     # rates ---------------------------------------------------------------------
@@ -249,7 +442,10 @@ class Solver:
             g1, g2 = (_grad(c, pos, p) for c in group.constraints)
             det = cross(g1, g2)
             norms = np.abs(g1) * np.abs(g2)      # hypot: no underflow of tiny guides
-            kin.measure[index] = np.abs(det) / np.where(norms > 0, norms, 1.0)
+            measure = np.abs(det) / np.where(norms > 0, norms, 1.0)
+            if index in kin.flat:           # a toggle within rounding: singular, whatever
+                measure = np.where(kin.flat[index], 0.0, measure)   # the noise in det says
+            kin.measure[index] = measure
             inv = 1.0 / np.where(det == 0, 1.0, det)
             lin = ((g2.imag * inv, -g2.real * inv), (-g1.imag * inv, g1.real * inv), g1, g2)
             kin.linear[index] = lin

@@ -9,6 +9,11 @@ links fail to close (> 0 means the dyad cannot be assembled there; the
 position returned is then the nearest, toggle-like one).  A discriminant that is
 negative only by rounding is treated as zero, so a toggle position returns a
 clean point, never NaN.
+
+With ``flat=True`` they also return where the discriminant is zero within the
+rounding it carries (TOGGLE times the magnitudes its terms and the points'
+coordinates bring): an exact toggle, whose computed square root is rounding
+noise of order sqrt(eps) and must not be mistaken for a regular position.
 """
 from __future__ import annotations
 
@@ -16,6 +21,8 @@ import numpy as np
 
 EPS = np.finfo(float).eps
 ROUNDING = 64 * EPS
+#: a discriminant within TOGGLE of zero, relative to the rounding it carries, is a toggle
+TOGGLE = 1024 * EPS
 
 
 def cross(a, b):
@@ -50,7 +57,7 @@ def _no_short(*arrays):
     return np.zeros(np.broadcast_shapes(*(np.shape(x) for x in arrays)))
 
 
-def circle_circle(a, r1, b, r2, branch):
+def circle_circle(a, r1, b, r2, branch, flat=False):
     """P with |P - A| = r1, |P - B| = r2; branch +1 puts P left of A->B.
 
     a = (r1^2 - r2^2 + d^2) / 2d along A->B, h = sqrt(r1^2 - a^2) across it;
@@ -59,7 +66,8 @@ def circle_circle(a, r1, b, r2, branch):
     d_vec = b - a
     d2 = np.asarray(d_vec.real * d_vec.real + d_vec.imag * d_vec.imag)
     if np.any(d2 == 0):
-        return _circle_circle_safe(a, r1, b, r2, branch)
+        p, short = _circle_circle_safe(a, r1, b, r2, branch)
+        return (p, short, np.abs(d2) == 0) if flat else (p, short)
     r1sq = r1 * r1
     t = (r1sq - r2 * r2 + d2) / (2.0 * d2)
     e = r1sq / d2 - t * t
@@ -69,7 +77,12 @@ def circle_circle(a, r1, b, r2, branch):
         short = np.where(gap > 0, np.maximum(d - (r1 + r2), np.abs(r1 - r2) - d), 0.0)
     else:
         s, short = np.sqrt(e), _no_short(d2, r1)
-    return a + d_vec * _complex(t, s if branch > 0 else -s), short
+    p = a + d_vec * _complex(t, s if branch > 0 else -s)
+    if not flat:
+        return p, short
+    reach = (np.abs(a) + np.abs(b)) / np.sqrt(d2)          # coordinates against the span
+    noise = TOGGLE * np.maximum(r1sq / d2, t * t) * (1.0 + reach)
+    return p, short, np.abs(e) <= noise
 
 
 def _circle_circle_safe(a, r1, b, r2, branch):
@@ -93,7 +106,7 @@ def line_frame(b, c, value):
     return bc / n, value / n
 
 
-def circle_line(a, r, b, c, value, branch):
+def circle_line(a, r, b, c, value, branch, flat=False):
     """P with |P - A| = r on the line (B, C, value); branch +1 is ahead along u.
 
     P = B + i e u + (t0 + branch sqrt(r^2 - d^2)) u, with t0 the foot of A and
@@ -109,7 +122,11 @@ def circle_line(a, r, b, c, value, branch):
     else:
         s, short = np.sqrt(disc), _no_short(disc)
     along = rel.real + s if branch > 0 else rel.real - s
-    return b + _complex(along, e) * u, short
+    p = b + _complex(along, e) * u
+    if not flat:
+        return p, short
+    noise = TOGGLE * (r * r + np.abs(dist) * (np.abs(a) + np.abs(b) + np.abs(e) + r))
+    return p, short, np.abs(disc) <= noise
 
 
 def line_line(b1, u1, e1, b2, u2, e2):
@@ -121,7 +138,7 @@ def line_line(b1, u1, e1, b2, u2, e2):
     return start + t * u1, parallel
 
 
-def slotted(b, length, a, value, branch):
+def slotted(b, length, a, value, branch, flat=False):
     """RPR: C with |C - B| = length and A on the line cross(C - B, A - B) = value.
 
     With A - B = rho e^{i psi} and C - B = length e^{i theta}:
@@ -138,4 +155,8 @@ def slotted(b, length, a, value, branch):
     c = np.sqrt((1.0 - s) * (1.0 + s))
     unit = np.where(rho > 0, w / rho_safe, 1.0)
     rot = _complex(c, -s) if branch > 0 else _complex(-c, -s)
-    return b + length * (unit * rot), short
+    p = b + length * (unit * rot)
+    if not flat:
+        return p, short
+    reach = (np.abs(a) + np.abs(b)) / rho_safe
+    return p, short, (1.0 - np.abs(s)) <= TOGGLE * (1.0 + reach)

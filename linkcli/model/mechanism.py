@@ -207,6 +207,7 @@ class Mechanism:
     dynamics: Dynamics | None = None   # the ``dynamics:`` section, None when absent
     coordinates: tuple = ()            # every independent coordinate; (driver,) for 1 DOF
     rolling: dict = field(default_factory=dict)   # name -> Rolling (contacts and cords)
+    as_drawn: bool = True              # built for the digit k the figure draws
     elements: Elements | None = None   # springs, dampers, forcing: None when absent
 
     def __post_init__(self):

@@ -1,0 +1,157 @@
+"""Exact toggles, change points and dead centres at many scales: either refused as a named
+singular position (exit 3), or answered with rates that agree with finite differences of
+the positions; never a number that is neither.  Regular positions close to a toggle are
+answered, and their rates agree with differences."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st, HealthCheck
+
+import linkcli
+from linkcli.errors import AssemblyError, SingularError
+
+FOURBAR = """
+units: {{length: mm, angle: rad}}
+frame: {{A: [0, 0], D: [{d!r}, 0]}}
+points: {{B: [{bx!r}, {by!r}], C: [{cx!r}, {cy!r}]}}
+links: {{AB: {{points: [A, B], length: {r!r}}}, BC: {{points: [B, C], length: {b!r}}},
+        CD: {{points: [C, D], length: {c!r}}}}}
+driver: {{angle: [A, B], value: {q!r}, rate: 1}}
+quantities: {{t3: {{angle: [B, C]}}, t4: {{angle: [D, C]}}}}
+report: {{position: [t3, t4], velocity: [t3dot, t4dot]}}
+"""
+
+SLIDER = """
+units: {{length: mm, angle: rad}}
+frame: {{A: [0, 0]}}
+points: {{B: [{bx!r}, {by!r}], C: [{cx!r}, {e!r}]}}
+links: {{AB: {{points: [A, B], length: {r!r}}}, BC: {{points: [B, C], length: {l!r}}}}}
+sliders: {{C: {{point: C, guide: {{y: {e!r}}}}}}}
+driver: {{angle: [A, B], value: {q!r}, rate: 1}}
+quantities: {{t3: {{angle: [B, C]}}}}
+report: {{position: [t3, xC], velocity: [t3dot, xCdot]}}
+"""
+
+SLOTTED = """
+units: {{length: mm, angle: rad}}
+frame: {{A: [0, 0], O: [{d!r}, 0]}}
+points: {{B: [{bx!r}, {by!r}], E: [{ex!r}, {ey!r}]}}
+links: {{AB: {{points: [A, B], length: {r!r}}}, OE: {{points: [O, E], length: {L!r}}}}}
+sliders: {{S: {{point: B, guide: {{along: [O, E], offset: {off!r}}}}}}}
+driver: {{angle: [A, B], value: {q!r}, rate: 1}}
+quantities: {{t: {{angle: [O, E]}}}}
+report: {{position: [t], velocity: [tdot]}}
+"""
+
+
+def _cis(a):
+    return complex(math.cos(a), math.sin(a))
+
+
+def fourbar(scale, r, b, c, d, q, branch_point):
+    """A four-bar text at crank angle q, figure near the solution on the side of branch_point."""
+    B = r * _cis(q)
+    D = complex(d, 0)
+    dist = abs(D - B)
+    # a figure point for C: the solution of the triangle (on the upper side), or a point on
+    # the line B-D at the toggle, nudged to the upper side
+    cosg = max(-1.0, min(1.0, (b * b + dist * dist - c * c) / (2 * b * dist)))
+    C = B + b * (D - B) / dist * _cis(math.acos(cosg))
+    C += 1e-3 * abs(D - B) * 1j * branch_point
+    s = scale
+    return FOURBAR.format(d=d * s, bx=B.real * s, by=B.imag * s, cx=C.real * s, cy=C.imag * s,
+                          r=r * s, b=b * s, c=c * s, q=q)
+
+
+def outcome(text, h):
+    """('refused', None) or ('answered', worst relative disagreement of rates with differences)."""
+    mech = linkcli.loads(text)
+    q0 = mech.model.driver.value
+    try:
+        result = mech.solve()
+    except SingularError:
+        return "refused", None
+    names = [n for n in mech.model.report["velocity"]]
+    plus = mech.solve(q=q0 + h, names=[n[:-3] for n in names])
+    minus = mech.solve(q=q0 - h, names=[n[:-3] for n in names])
+    worst = 0.0
+    for n in names:
+        base = n[:-3]
+        diff = float(plus.values[base]) - float(minus.values[base])
+        if result.units[base] == "rad":
+            diff = (diff + math.pi) % (2 * math.pi) - math.pi
+        fd = diff / (2 * h)
+        got = float(result.values[n])
+        worst = max(worst, abs(got - fd) / max(abs(got), abs(fd), 1e-3))
+    return "answered", worst
+
+
+SCALES = st.sampled_from([1e-3, 1.0, 7.0, 1e3, 1e5])
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=list(HealthCheck))
+@given(scale=SCALES, r=st.floats(0.2, 1.0), b=st.floats(1.0, 3.0), c=st.floats(1.0, 3.0),
+       d=st.floats(1.5, 3.0), outer=st.booleans())
+def test_fourbar_exact_toggles(scale, r, b, c, d, outer):
+    """B, C, D aligned: |BD| = b + c (outer) or |b - c| (inner)."""
+    target = b + c if outer else abs(b - c)
+    cos_q = (r * r + d * d - target * target) / (2 * r * d)
+    if not -1 < cos_q < 1 or target < 1e-3:
+        return
+    q = math.acos(cos_q)
+    kind, worst = outcome(fourbar(scale, r, b, c, d, q, 1), 1e-7)
+    assert kind == "refused" or worst < 1e-4, (kind, worst)
+    # a regular position near the toggle, on the side where it assembles, is answered
+    answered = []
+    for near in (q - 1e-5, q + 1e-5):
+        try:
+            answered.append(outcome(fourbar(scale, r, b, c, d, near, 1), 1e-9))
+        except AssemblyError:
+            continue
+    assert answered, "neither side of the toggle assembles"
+    for kind, worst in answered:
+        assert kind == "answered" and worst < 1e-3, (kind, worst)
+
+
+@pytest.mark.parametrize("scale", [1e-3, 1.0, 10.0, 1e3, 1e6])
+@pytest.mark.parametrize("q", [0.0, math.pi])
+def test_parallelogram_change_points_are_refused(scale, q):
+    """40/100/40/100 at q = 0 and 180 deg: the links are aligned, both branches meet."""
+    text = FOURBAR.format(d=100 * scale, bx=40 * scale * math.cos(q), by=1e-3 * scale,
+                          cx=(100 + 40 * math.cos(q)) * scale, cy=1e-3 * scale,
+                          r=40 * scale, b=100 * scale, c=40 * scale, q=q)
+    assert outcome(text, 1e-7)[0] == "refused"
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=list(HealthCheck))
+@given(scale=SCALES, r=st.floats(0.2, 1.0), l_ratio=st.floats(1.0, 4.0),
+       e_ratio=st.floats(-0.9, 0.9))
+def test_crank_slider_rod_perpendicular_to_the_guide(scale, r, l_ratio, e_ratio):
+    """The rod normal to the guide (|e - y_B| = l): the RRP toggle."""
+    l = r * l_ratio
+    e = e_ratio * r - l if e_ratio * r - l > -r - l else -l
+    # crank angle with y_B = e + l (the rod vertical, C straight below B)
+    s = (e + l) / r
+    if not -1 < s < 1:
+        return
+    q = math.asin(s)
+    B = r * _cis(q)
+    text = SLIDER.format(bx=B.real * scale, by=B.imag * scale, cx=B.real * scale + 1e-3 * scale,
+                         e=e * scale, r=r * scale, l=l * scale, q=q)
+    kind, worst = outcome(text, 1e-7)
+    assert kind == "refused" or worst < 1e-4, (kind, worst)
+
+
+@pytest.mark.parametrize("scale", [1e-3, 1.0, 1e3, 1e5])
+def test_slotted_link_toggle(scale):
+    """The slot's offset equal to the pin's distance from the slotted link's pivot:
+    |sin| = 1 in the RPR dyad, an exact toggle."""
+    r, d, off = 0.5, 1.0, 0.5          # |B - O| = 0.5 = off at q = 0
+    B = complex(r, 0)
+    text = SLOTTED.format(d=d * scale, bx=B.real * scale, by=B.imag * scale,
+                          ex=(d + 0.01) * scale, ey=2.0 * scale, r=r * scale, L=2.0 * scale,
+                          off=off * scale, q=0.0)
+    assert outcome(text, 1e-7)[0] == "refused"

@@ -102,7 +102,8 @@ def unknown_load(mech, pos, vel, extra_power=0.0, size=None, q=None):
             f"coefficient is {float(np.min(ratio)):.1e} of the largest load's (a dead centre "
             "for it), so statics cannot find it", file=mech.file, load=unknown.name,
             rows=bad, measure=float(np.min(ratio)),
-            hint="move the driver away from the dead centre, or choose another unknown load")
+            hint="move the driver away from a dead centre; a load that never works needs "
+            "another unknown")
     return -total / c
 
 

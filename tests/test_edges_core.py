@@ -204,3 +204,42 @@ def test_every_shipped_file_matches_its_figure():
         except linkcli.LinkcliError:
             continue                         # the class-III file: Newton only
         assert cautions == [], (path, [str(c) for c in cautions])
+
+
+# --- contacts that lift off --------------------------------------------------------------
+def _root():
+    import os
+    return os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def test_rolling_contact_that_pulls_is_reported():
+    """With gravity the floor pushes (no warning); with gravity reversed it would have to pull."""
+    import os
+    from linkcli.forces.joint_forces import solve
+    from linkcli.kinematics.solvers import state
+    path = os.path.join(_root(), "mechanisms", "curami-2001-07-17-disc.yaml")
+    text = open(path).read()
+    mech = linkcli.loads(text).model
+    kin, _ = state(mech)
+    assert solve(mech, kin).cautions == []
+    upside = linkcli.loads(text.replace("gravity: 9.81", "gravity: {g: 9.81, angle: 90}")).model
+    kin, _ = state(upside)
+    cautions = solve(upside, kin).cautions
+    assert len(cautions) == 1 and cautions[0].kind == "contact"
+    assert "the rolling contact of D pulls (N = -" in cautions[0].detail
+    assert cautions[0].points["D"] == pytest.approx(-6 * 9.81, rel=0.2)
+
+
+@pytest.mark.parametrize("speed, lifts", [(5, False), (8.5, False), (8.7, True), (12, True)])
+def test_wheel_on_a_road_lifts_off_above_its_speed(speed, lifts):
+    """20 Jun 2001: the contact force amplitude k Z_rel + r Z_rel' reaches m g at 8.58 m/s
+    (damped, the chosen numbers): above it the wheel leaves the runway."""
+    import os
+    path = os.path.join(_root(), "mechanisms", "polimi-2001-06-20-vibration.yaml")
+    text = open(path).read().replace("  V: 5                # m/s, taxi speed", f"  V: {speed}")
+    result = linkcli.loads(text).solve()
+    contact = [c for c in result.cautions if c.kind == "contact"]
+    assert bool(contact) == lifts
+    if lifts:
+        assert "the wheel lifts off the road" in contact[0].detail
+        assert float(result.values["Ft"]) > 6 * 9.81 * 50 / 6   # above m g = 490.5 N

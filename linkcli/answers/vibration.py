@@ -107,7 +107,34 @@ def evaluate(mech, names, result):
             result.values[name] = value
             result.units[name] = unit
     result.analysis = analysis
+    result.cautions = road_lift_off(analysis)
     return result
+
+
+def road_lift_off(analysis) -> list:
+    """A wheel on a road (``excitation: road``) is held down by its static load only: where
+    the amplitude of the dynamic force the system exerts on the road's coordinate exceeds
+    the static force, the contact pulls in part of each cycle, so the wheel lifts off and the
+    linear answer assumes a contact it has not."""
+    mech = analysis.mech
+    lin = analysis.lin
+    road = mech.elements.supports.get("road") if mech.elements else None
+    if road is None or lin.frequency is None:
+        return []
+    j = road.coordinate
+    t = lin.eq.terms
+    w = lin.frequency
+    static = abs(float(t.Q[j]))
+    X = analysis.amplitudes()
+    row = t.K[j] - w ** 2 * t.M[j] + 1j * w * t.R[j]
+    dynamic = abs(complex(row @ X))
+    if dynamic <= static:
+        return []
+    from linkcli.errors import Caution
+    return [Caution("contact", f"the wheel lifts off the road: the dynamic contact force "
+                    f"amplitude {dynamic:.6g} N exceeds the static load {static:.6g} N at "
+                    f"Omega = {w:.6g} rad/s; the linear response assumes a contact the wheel "
+                    "does not keep", mech.file, {mech.coordinates[j].name: dynamic})]
 
 
 def _coordinate(mech, name) -> int:

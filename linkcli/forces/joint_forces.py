@@ -13,7 +13,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.forces import motion as dyn_mod
-from linkcli.errors import SingularError, SolveError, StructureError
+from linkcli.errors import Caution, SingularError, SolveError, StructureError
+from linkcli.kinematics.closed_form import where_text
 from linkcli.forces.friction import coefficients, friction_force, normal_factors, sliding_signs
 from linkcli.forces.newton_euler import System
 from linkcli.forces.pairs import PairForce
@@ -30,6 +31,7 @@ class Reactions:
     pins: dict = field(default_factory=dict)     # (point, body) -> force of the pin on the body
     pairs: dict = field(default_factory=dict)    # name -> PairForce
     unknown: object = None                       # value of the unknown load (SI)
+    cautions: list = field(default_factory=list)  # contacts that pull: they lift off
     loads: dict = field(default_factory=dict)    # every load's value (SI)
 
 
@@ -102,6 +104,26 @@ def _unpack(system, x, friction, sigma) -> Reactions:
     out.unknown = system.value(x, ("unknown", None, 0))
     out.loads = {n: (load.value if load.value is not None else out.unknown)
                  for n, load in mech.loads.items()}
+    out.cautions = lift_off(mech, system.kin, out.pairs)
+    return out
+
+
+def lift_off(mech, kin, pairs) -> list:
+    """A rolling contact can only push: a normal force N < 0 (from the ground towards the
+    centre) means the disc lifts off there, and the answer assumes a contact it has not."""
+    out = []
+    for pf in pairs.values():
+        if pf.kind != "disc":
+            continue
+        normal = np.asarray(pf.normal, dtype=float)
+        pulls = normal < 0
+        if np.any(pulls):
+            worst = float(np.min(normal))
+            where = where_text(mech, kin.q, np.broadcast_to(pulls, np.shape(kin.q)))
+            out.append(Caution("contact", f"the rolling contact of {pf.name} pulls "
+                               f"(N = {worst:.6g} N {where}): the disc lifts off the ground "
+                               "there, and forces that assume the contact are not what happens",
+                               mech.file, {pf.name: worst}))
     return out
 
 

@@ -24,9 +24,10 @@ ALLOWED = {
     "forces": {"errors", "model", "kinematics"},
     "answers": {"errors", "model", "input", "kinematics", "forces"},
     "pictures": {"errors", "model", "input", "kinematics", "forces", "answers"},
+    "exports": {"errors", "model", "input", "kinematics", "forces", "answers", "pictures"},
     "api": {"errors", "model", "input", "kinematics", "forces", "answers"},
-    "cli": {"errors", "model", "input", "kinematics", "forces", "answers", "pictures", "api",
-            "package"},
+    "cli": {"errors", "model", "input", "kinematics", "forces", "answers", "pictures", "exports",
+            "api", "package"},
     "package": {"errors", "api"},
 }
 

@@ -119,6 +119,7 @@ _ALWAYS_LOADER = [           # messages of rules that need the rest of the file
     r"already rolls",
     r"names a rolling contact already",
     r"^a disc cannot roll on itself",
+    r"section to score",
     r"^the road gives Omega",
     r"is both fixed \(frame\) and moving",
     r"belongs to no link, slider or actuator",

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from linkcli.input import expressions
 from linkcli.errors import InputError
-from linkcli.model.mechanism import Body, Mechanism, split_rate
+from linkcli.model.mechanism import Body, Mechanism, Quiz, split_rate
 from linkcli.model.units import Units
 from linkcli.input.source import Document
 from linkcli.input.report import SECTIONS, AnswersSection
@@ -24,7 +24,7 @@ from linkcli.input.reader import NAME, UNKNOWN, InputErrors, Reader, _kind, _Ski
 TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points", "links",
             "actuators", "sliders", "driver", "coordinates", "loads", "quantities", "report",
             "keys", "dynamics", "springs", "dampers", "excitation", "initial", "equilibrium",
-            "rolling", "cords"}
+            "rolling", "cords", "statement", "quiz"}
 VIBRATION_KEYS = ("springs", "dampers", "excitation", "initial", "equilibrium")
 
 __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS", "UNKNOWN",
@@ -85,7 +85,10 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                          fixed=fixed, moving=moving, bodies=bodies, actuators=actuators,
                          driver=driver, loads=loads, quantities=quantities, report=report,
                          keys=keys, coordinates=coordinates, rolling=rolling,
-                         as_drawn=self.k_override is None or self.k_override == data.get("k"))
+                         as_drawn=self.k_override is None or self.k_override == data.get("k"),
+                         statement=self.block(self.statement, data) or "",
+                         quiz=self.block(self.quiz, data, report) or Quiz(),
+                         params={n: v for n, v in self.names.items()})
         if coordinates:
             mech.elements = ElementsReader(self, mech, _Skip).run(data)
             for load in loads.values():
@@ -97,6 +100,41 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
         if self.errors:
             raise InputErrors(self.errors)
         return mech
+
+    def statement(self, data) -> str:
+        value = data.get("statement", "")
+        if value is None:
+            return ""
+        if not isinstance(value, str):
+            raise self.error(("statement",), f"the statement is text, got {_kind(value)}")
+        return value
+
+    def quiz(self, data, report) -> Quiz:
+        """``quiz: {points: {position: 9, velocity: 9, statics: 2}, tolerance: 0.05}``."""
+        spec = data.get("quiz")
+        if spec is None:
+            return Quiz()
+        spec = self.mapping(spec, ("quiz",), {"points", "tolerance"})
+        points = None
+        if "points" in spec:
+            path = ("quiz", "points")
+            given = self.mapping(spec["points"], path, set(SECTIONS) - {"points"})
+            points = {}
+            for section, value in given.items():
+                number = self.number(value, path + (section,))
+                if not number > 0:
+                    raise self.error(path + (section,), f"points must be positive, got {value!r}")
+                if report and not report.get(section):
+                    raise self.error(path + (section,), f"the report has no {section} section "
+                                     "to score", hint="remove it or list its names in 'report'")
+                points[section] = number
+        tolerance = None
+        if "tolerance" in spec:
+            tolerance = self.number(spec["tolerance"], ("quiz", "tolerance"))
+            if not tolerance > 0:
+                raise self.error(("quiz", "tolerance"), f"a tolerance must be positive, got "
+                                 f"{spec['tolerance']!r}", hint="in the answers' display units")
+        return Quiz(points, tolerance)
 
     @staticmethod
     def element_names(data, key) -> set:

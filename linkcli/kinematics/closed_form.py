@@ -430,6 +430,21 @@ class Solver:
         r2 = _rhs(c2, g2, pos, d, kin.coords, qrate, vel, kin.rates)
         return _combine(r1, k1, r2, k2)
 
+    def rate_system(self, index, kin, order):
+        """The 2x2 rate system of dyad ``index`` as solved at ``kin`` (rates of ``order``
+        1 or 2 already on ``kin``): (G_1, G_2, r_1, r_2, P') with Re(conj(G_i) P') = r_i,
+        for the worked solution."""
+        group = self.groups[index]
+        pos, p = kin.pos, group.point
+        g1, g2 = (_grad(c, pos, p) for c in group.constraints)
+        d = dict(kin.vel if order == 1 else kin.acc)
+        solved = d.pop(p)
+        rates = kin.rates if order == 1 else kin.accels
+        vel = None if order == 1 else kin.vel
+        r1, r2 = (_rhs(c, g, pos, d, kin.coords, rates, vel, kin.rates)
+                  for c, g in zip(group.constraints, (g1, g2)))
+        return g1, g2, r1, r2, solved
+
     def _inverse(self, index, group, kin):
         """The group's 2x2 rate system Re(conj(G_i) V) = r_i, solved once per position.
 

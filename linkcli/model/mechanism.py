@@ -183,6 +183,16 @@ class AnswerKey:
     entries: tuple
 
 
+@dataclass(frozen=True)
+class Quiz:
+    """How a Moodle quiz scores the file: ``points`` per report section (the exams'
+    9/9/2; None: one point per answer box) and the answers' absolute ``tolerance`` in
+    display units (None: half a unit of the last printed decimal)."""
+
+    points: dict | None = None
+    tolerance: float | None = None
+
+
 @dataclass(eq=False)
 class Mechanism:
     """A mechanism definition for one value of k (SI units).
@@ -208,6 +218,9 @@ class Mechanism:
     coordinates: tuple = ()            # every independent coordinate; (driver,) for 1 DOF
     rolling: dict = field(default_factory=dict)   # name -> Rolling (contacts and cords)
     as_drawn: bool = True              # built for the digit k the figure draws
+    statement: str = ""                # the exam's statement text, for exports
+    quiz: Quiz = field(default_factory=Quiz)
+    params: dict = field(default_factory=dict)    # the file's named numbers for this k
     elements: Elements | None = None   # springs, dampers, forcing: None when absent
 
     def __post_init__(self):

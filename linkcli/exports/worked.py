@@ -1,0 +1,225 @@
+"""A worked solution: the page a teaching assistant hands out after the exam.
+
+The data, Grübler's count and the Assur decomposition, each group's closure
+equations in solving order with the numbers, the velocity and acceleration
+systems of each dyad with their coefficients and results, the statics by
+virtual work (each load's virtual power) or the power balance, the results
+table as the exam prints it, and the figure with its vector polygon.  A
+vibration problem gets its energies, equilibrium and linearised system.
+
+The content is built once as a list of blocks (heading, paragraph, lines of
+equations, table, figure) and rendered as one self-contained HTML page (inline
+SVG figure, no network, no external file) or as Markdown.  Every number comes
+from the same evaluation as ``solve``.
+"""
+from __future__ import annotations
+
+import html
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from linkcli.answers.explain import explain
+from linkcli.answers.formats import HEADINGS, fmt
+from linkcli.answers.sheet import evaluate
+from linkcli.kinematics.solvers import solver_for
+from linkcli.model.mechanism import REPORT_SECTIONS
+
+WORDS = {
+    "en": {"data": "Data", "structure": "Mobility and Assur decomposition",
+           "positions": "Position analysis: closure of each group in solving order",
+           "velocities": "Velocity analysis: the linear system of each dyad",
+           "accelerations": "Acceleration analysis: the linear system of each dyad",
+           "statics": "Statics by virtual work", "results": "Results",
+           "figure": "Figure and vector polygon", "solution": "Worked solution",
+           "system": "Re(conj(G_i) v) = r_i: G_i the gradient of each constraint (m), "
+                     "r_i its known part (m^2/s, m^2/s^2)", "load": "load", "coefficient":
+           "virtual power per unit driver rate", "value": "value", "quantity": "quantity",
+           "unit": "unit", "vibration": "Vibrations"},
+    "it": {"data": "Dati", "structure": "Mobilità e scomposizione in diadi",
+           "positions": "Analisi di posizione: chiusura di ogni gruppo nell'ordine di soluzione",
+           "velocities": "Analisi di velocità: il sistema lineare di ogni diade",
+           "accelerations": "Analisi di accelerazione: il sistema lineare di ogni diade",
+           "statics": "Analisi statica con il principio dei lavori virtuali",
+           "results": "Risultati", "figure": "Figura e poligono dei vettori",
+           "solution": "Soluzione", "system": "Re(conj(G_i) v) = r_i: G_i il gradiente di ogni "
+           "vincolo (m), r_i la sua parte nota (m^2/s, m^2/s^2)", "load": "carico",
+           "coefficient": "potenza virtuale per velocità unitaria del movente",
+           "value": "valore", "quantity": "grandezza", "unit": "unità",
+           "vibration": "Vibrazioni"},
+}
+
+
+@dataclass
+class Block:
+    kind: str                    # heading | text | lines | table | figure
+    content: object
+    header: list = field(default_factory=list)
+
+
+def _xy(z, f):
+    z = complex(np.ravel(z)[0]) / f
+    return f"({z.real:.6g}, {z.imag:.6g})"
+
+
+def blocks(mech, lang="en", figure=True) -> list:
+    """The worked solution of ``mech`` (at its own digit and driver value) as blocks."""
+    from linkcli.exports.moodle import data_lines
+    w = WORDS[lang]
+    result = evaluate(mech)
+    out = [Block("heading", mech.title)]
+    if mech.statement:
+        out += [Block("text", p.strip()) for p in mech.statement.split("\n\n") if p.strip()]
+    out += [Block("heading", w["data"]), Block("lines", data_lines(mech))]
+    out += [Block("heading", w["structure"]),
+            Block("lines", explain(mech).splitlines()[2:])]
+    if mech.elements is None:
+        out += _kinematics(mech, w)
+    out.append(Block("heading", w["results"]))
+    headings = HEADINGS[lang]
+    decimals = mech.report.get("decimals", 1)
+    for section in REPORT_SECTIONS:
+        names = mech.report.get(section) or []
+        if names:
+            rows = [[n, fmt(np.ravel(result.values[n])[0], decimals), result.units[n]]
+                    for n in names]
+            title = headings["dynamics" if section == "statics" and mech.dynamics is not None
+                             and mech.elements is None else section]
+            out.append(Block("table", rows, [title, w["value"], w["unit"]]))
+    if figure:
+        from linkcli.exports.figure import figure_bytes
+        out += [Block("heading", w["figure"]),
+                Block("figure", figure_bytes(mech, "svg").decode("utf-8"))]
+    return out
+
+
+def _kinematics(mech, w) -> list:
+    """Closure, velocity and acceleration systems of each group, and the statics."""
+    solver = solver_for(mech)
+    d = mech.driver
+    unit, f = mech.units.display("length", 0)
+    kin = solver.positions(d.value)
+    solver.check(kin, velocities=False)
+    solver.velocities(kin, d.rate)
+    solver.check(kin, velocities=True)
+    vel_systems = _systems(solver, kin, 1)
+    solver.accelerations(kin, d.accel, keep=True)
+    acc_systems = _systems(solver, kin, 2)
+    kin.linear.clear()
+    lines = []
+    for group in solver.groups:
+        if group.point is None:
+            lines.append(f"{group.describe()}")
+            continue
+        lines.append(f"{group.describe()}: {group.point} = {_xy(kin.pos[group.point], f)} {unit}")
+        for c in group.constraints:
+            text = _constraint_text(c, mech, f, unit)
+            if text:
+                lines.append(f"    {text}")
+    out = [Block("heading", w["positions"]), Block("lines", lines)]
+    for key, systems, suffix in (("velocities", vel_systems, "/s"),
+                                 ("accelerations", acc_systems, "/s^2")):
+        rows = []
+        for point, g1, g2, r1, r2, value in systems:
+            rows.append(f"{point}: G1 = {_xy(g1, 1)}, G2 = {_xy(g2, 1)}, "
+                        f"r1 = {float(np.ravel(r1)[0]):.6g}, r2 = {float(np.ravel(r2)[0]):.6g}"
+                        f"  ->  {point}{chr(39) * (1 if suffix == '/s' else 2)} = "
+                        f"{_xy(value, f)} {unit}{suffix}")
+        if rows:
+            out += [Block("heading", w[key]), Block("lines", [w["system"]] + rows)]
+    if mech.loads and mech.dynamics is None and any(ld.value is None for ld in mech.loads.values()):
+        out += _statics(mech, solver, kin, w)
+    return out
+
+
+def _systems(solver, kin, order):
+    out = []
+    for index, group in enumerate(solver.groups):
+        if group.is_dyad and group.point is not None:
+            g1, g2, r1, r2, value = solver.rate_system(index, kin, order)
+            out.append((group.point, g1, g2, r1, r2, value))
+    return out
+
+
+def _constraint_text(c, mech, f, unit):
+    from linkcli.kinematics.topology import Dist, Line
+    if isinstance(c, Dist):
+        length = "q" if c.length is None else f"{c.length / f:.6g} {unit}"
+        return f"|{c.p} - {c.a}| = {length}"
+    if isinstance(c, Line):
+        return f"cross({c.c} - {c.b}, {c.p} - {c.b}) = {c.value / f ** 2:.6g} {unit}^2"
+    return None
+
+
+def _statics(mech, solver, kin, w):
+    from linkcli.forces.statics import coefficient
+    unit_kin = solver.velocities(kin.at_rest(), np.ones_like(kin.q))
+    rows = []
+    for load in mech.loads.values():
+        c = float(np.ravel(coefficient(mech, load, kin.pos, unit_kin.vel))[0])
+        kind = mech.load_unit_kind(load)
+        value = "?" if load.value is None else f"{load.value / mech.units.factor(kind):.6g}"
+        rows.append([load.name, value, f"{c:.6g}"])
+    return [Block("heading", w["statics"]),
+            Block("text", "sum_i L_i c_i = 0"),
+            Block("table", rows, [w["load"], w["value"], w["coefficient"]])]
+
+
+# --- renderers ---------------------------------------------------------------------------
+def to_html(items, lang="en") -> str:
+    esc = html.escape
+    body = []
+    for b in items:
+        if b.kind == "heading":
+            tag = "h1" if not body else "h2"
+            body.append(f"<{tag}>{esc(str(b.content))}</{tag}>")
+        elif b.kind == "text":
+            body.append(f"<p>{esc(str(b.content))}</p>")
+        elif b.kind == "lines":
+            body.append("<pre>" + esc("\n".join(str(x) for x in b.content)) + "</pre>")
+        elif b.kind == "table":
+            head = "".join(f"<th>{esc(str(h))}</th>" for h in b.header)
+            rows = "".join("<tr>" + "".join(f"<td>{esc(str(c))}</td>" for c in row) + "</tr>"
+                           for row in b.content)
+            body.append(f'<table class="results"><thead><tr>{head}</tr></thead>'
+                        f"<tbody>{rows}</tbody></table>")
+        elif b.kind == "figure":
+            svg = b.content[b.content.find("<svg"):]
+            body.append(f'<div class="figure">{svg}</div>')
+    title = esc(str(items[0].content)) if items else "linkcli"
+    style = ("body{font-family:sans-serif;max-width:60em;margin:2em auto;padding:0 1em}"
+             "pre{background:#f6f6f6;padding:.6em;overflow-x:auto}"
+             "table{border-collapse:collapse;margin:.5em 0}"
+             "td,th{border:1px solid #bbb;padding:.2em .6em;text-align:left}"
+             ".figure svg{max-width:100%;height:auto}")
+    return (f'<!DOCTYPE html>\n<html lang="{lang}"><head><meta charset="utf-8">'
+            f"<title>{title}</title><style>{style}</style></head><body>"
+            + "\n".join(body) + "</body></html>\n")
+
+
+def to_markdown(items) -> str:
+    out = []
+    first = True
+    for b in items:
+        if b.kind == "heading":
+            out.append(("# " if first else "## ") + str(b.content).replace("\n", " "))
+            first = False
+        elif b.kind == "text":
+            out.append(str(b.content))
+        elif b.kind == "lines":
+            out.append("```\n" + "\n".join(str(x) for x in b.content) + "\n```")
+        elif b.kind == "table":
+            out.append("\n".join(["| " + " | ".join(_md(h) for h in b.header) + " |",
+                                  "|" + " --- |" * len(b.header)] +
+                                 ["| " + " | ".join(_md(c) for c in row) + " |"
+                                  for row in b.content]))
+        elif b.kind == "figure":
+            out.append("(figure: see the HTML export)")
+    return "\n\n".join(out) + "\n"
+
+
+def _md(value) -> str:
+    text = str(value)
+    for ch in "\\|*_`<>[]":
+        text = text.replace(ch, "\\" + ch)
+    return text

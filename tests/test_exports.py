@@ -160,3 +160,29 @@ def test_worked_solution_in_italian_and_markdown():
     assert "## Dati" in md and "## Risultati" in md
     assert "| Analisi Cinematica di POSIZIONE | valore | unità |" in md
     assert "Statica" in md or "STATICA" in md
+
+
+def test_worked_solution_renders_in_a_headless_browser(tmp_path):
+    """Chromium (Debian's package) loads the page: no console error, the results table in
+    the DOM, and a screenshot saved for a person to look at (tmp_path/solution.png)."""
+    import shutil
+    import subprocess
+    browser = shutil.which("chromium") or shutil.which("chromium-browser")
+    if browser is None:
+        pytest.skip("chromium is not installed (apt-get install chromium)")
+    pytest.importorskip("matplotlib")
+    mech = linkcli.load(os.path.join(MECH, "padova-2020-07.yaml")).model
+    page = tmp_path / "solution.html"
+    page.write_text(worked.to_html(worked.blocks(mech, "it")), encoding="utf-8")
+    flags = ["--headless", "--no-sandbox", "--disable-gpu", "--enable-logging=stderr", "--v=0",
+             f"--user-data-dir={tmp_path / 'profile'}"]
+    dom = subprocess.run([browser, *flags, "--dump-dom", page.as_uri()], capture_output=True,
+                         text=True, timeout=120)
+    assert dom.returncode == 0, dom.stderr[-2000:]
+    assert '<table class="results">' in dom.stdout and "phi1" in dom.stdout
+    console = [line for line in dom.stderr.splitlines() if "CONSOLE" in line]
+    assert console == [], console
+    shot = tmp_path / "solution.png"
+    subprocess.run([browser, *flags, f"--screenshot={shot}", "--window-size=1100,2600",
+                    page.as_uri()], capture_output=True, timeout=120)
+    assert shot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

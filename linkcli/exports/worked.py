@@ -147,6 +147,9 @@ def _constraint_text(c, mech, f, unit):
         length = "q" if c.length is None else f"{c.length / f:.6g} {unit}"
         return f"|{c.p} - {c.a}| = {length}"
     if isinstance(c, Line):
+        body = mech.bodies.get(c.body)
+        if body is not None and body.guide is not None and c.b.startswith("~"):
+            return f"{c.p} on the guide {body.guide.text}"
         return f"cross({c.c} - {c.b}, {c.p} - {c.b}) = {c.value / f ** 2:.6g} {unit}^2"
     return None
 

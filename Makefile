@@ -40,6 +40,7 @@ check: $(VENV)/.installed
 bench: $(VENV)/.installed-test
 	$(BIN)/python benchmarks/speed_accuracy.py
 	$(BIN)/python benchmarks/vibration.py
+	$(BIN)/python benchmarks/memory.py
 
 clean:
 	rm -rf $(VENV) build *.egg-info .pytest_cache benchmarks/out

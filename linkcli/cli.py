@@ -8,8 +8,13 @@ when ``NO_COLOR`` is set); ``--quiet`` keeps only results and problems.
 """
 from __future__ import annotations
 
+import contextlib
+import errno
 import os
+import re
+import signal
 import sys
+import threading
 import warnings
 
 import click
@@ -18,7 +23,25 @@ from linkcli import __version__
 from linkcli.errors import InputError, LinkcliError
 
 FORMATS = ["exam", "table", "json", "csv"]
-K_OPTION = click.option("--k", "k", type=int, default=None,
+# characters a terminal may act on (C0 but the newline, DEL, C1: escape sequences,
+# carriage return, bell): never echoed from a file, whose text is data.  Whole escape
+# sequences go first (CSI ... final byte; OSC, DCS ... up to BEL or ST), so that no
+# '[31m' is left behind, then any control character left.
+ESCAPES = re.compile("\x1b\\[[0-?]*[ -/]*[@-~]|\x9b[0-?]*[ -/]*[@-~]"
+                     "|[\x1b][]PX^_][^\x07\x1b\x9c]*(?:\x07|\x1b\\\\|\x9c)?"
+                     "|\x1b[ -/]*[0-~]")
+CONTROL = re.compile("[\x00-\x09\x0b-\x1f\x7f-\x9f]")
+
+
+def _digit(ctx, param, value):
+    """--k: a digit, refused here (blamed on the option) before the file is read."""
+    if value is not None and not 0 <= value <= 9:
+        raise InputError(f"k must be a digit 0-9, got {value}", key="--k",
+                         hint="k is the last digit of the matricola")
+    return value
+
+
+K_OPTION = click.option("--k", "k", type=int, default=None, callback=_digit,
                         help="Last digit of the matricola (0-9).")
 
 
@@ -38,16 +61,111 @@ def _quiet() -> bool:
     return bool(ctx and ctx.find_root().obj and ctx.find_root().obj.get("quiet"))
 
 
+def _clean(text) -> str:
+    """``text`` without the control characters a terminal would act on (newlines kept)."""
+    text = str(text)
+    if CONTROL.search(text) is None:      # the usual case: no copy of a long output
+        return text
+    return CONTROL.sub("", ESCAPES.sub("", text))
+
+
+class _Signalled(BaseException):
+    """SIGINT or SIGTERM: unwinds like KeyboardInterrupt (so that ``finally`` blocks and
+    the pictures' temporary files are cleaned up), and main() exits 128 + the signal."""
+
+    def __init__(self, signum: int):
+        super().__init__(signum)
+        self.signum = signum
+
+
+def _raise_signal(signum, frame):
+    raise _Signalled(signum)
+
+
+@contextlib.contextmanager
+def _signals():
+    """SIGINT and SIGTERM raise _Signalled while main() runs (in the main thread, and
+    unless the signal is ignored, as for a background job)."""
+    saved = {}
+    if threading.current_thread() is threading.main_thread():
+        for signum in (signal.SIGINT, signal.SIGTERM):
+            try:
+                if signal.getsignal(signum) is not signal.SIG_IGN:
+                    saved[signum] = signal.signal(signum, _raise_signal)
+            except (ValueError, OSError):   # pragma: no cover - no signals here
+                pass
+    try:
+        yield
+    finally:
+        for signum, handler in saved.items():
+            signal.signal(signum, handler if handler is not None else signal.SIG_DFL)
+
+
+def _drop_stdout():
+    """Point file descriptor 1 at /dev/null after a failed write, so that the output still
+    buffered does not fail again (with a traceback) when Python exits."""
+    try:
+        fd = sys.stdout.fileno()
+    except (AttributeError, OSError, ValueError):   # not a real file (tests)
+        return
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, fd)
+    finally:
+        os.close(devnull)
+
+
+class _PipeClosed(BaseException):
+    """The reader of standard output went away (``| head``): stop quietly."""
+
+
+def _output_failed(exc: OSError):
+    """A failed write to standard output: quiet for a closed pipe, else an input error."""
+    _drop_stdout()
+    if isinstance(exc, BrokenPipeError) or exc.errno == errno.EPIPE:
+        raise _PipeClosed() from None
+    raise InputError(f"cannot write to standard output: {exc.strerror or exc}") from None
+
+
+def _echo(text="", err=False, prefix="", nl=True):
+    """Print ``text`` (from the file: control characters removed) after ``prefix`` (ours,
+    perhaps coloured).  A standard output that cannot be written is an error, not a bug."""
+    try:
+        click.echo(prefix + _clean(text), err=err, nl=nl)
+    except OSError as exc:
+        if err:
+            return        # nowhere left to report it
+        _output_failed(exc)
+
+
 def _emit(text: str, output):
     if output is None:
-        click.echo(text)
+        _echo(text)
         return
     try:
         with open(output, "w", encoding="utf-8") as handle:
-            handle.write(text + "\n")
+            handle.write(_clean(text) + "\n")
     except OSError as exc:
         raise InputError(f"cannot write output file: {exc.strerror}", file=output,
                          hint="check the folder exists and is writable") from None
+
+
+def _not_an_input(output, *inputs):
+    """Refuse ``-o`` naming one of the input files (also through a link): it would be
+    overwritten before, or instead of, being read."""
+    if output is None:
+        return
+    for path in inputs:
+        if path in (None, "-"):
+            continue
+        try:
+            same = os.path.samefile(output, path)
+        except (OSError, ValueError):
+            same = os.path.realpath(output) == os.path.realpath(path)
+        if same:
+            raise InputError(f"the output file is the input file {path}", file=output,
+                             key="-o", hint="give -o another name: writing it would "
+                             "replace the mechanism")
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
@@ -110,14 +228,19 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions):
       linkcli solve mechanisms/fourbar-inverse-dynamics.yaml --reactions
     """
     from linkcli.answers.formats import render
+    _not_an_input(output, file)
     mech = _load(file, k)
     decimals = mech.report.get("decimals", 1) if decimals is None else decimals
     from linkcli.answers.sheet import evaluate
-    text = render(evaluate(mech, method=method, tol=_tol(tol)), form, decimals, lang)
-    if reactions:
+    tol = _tol(tol)
+    result = evaluate(mech, method=method, tol=tol)
+    text = render(result, form, decimals, lang)
+    if reactions:   # the joint forces at the positions of the same method
         from linkcli.answers.reaction_table import append_report
-        text = append_report(text, mech, form, decimals)
+        text = append_report(text, mech, form, decimals, method=method, tol=tol)
     _emit(text, output)
+    for caution in result.cautions:       # after the answers: what the reader should check
+        _echo(f"linkcli: {caution}", err=True)
 
 
 @cli.command()
@@ -132,6 +255,7 @@ def explain(file, k, output):
       linkcli explain mechanisms/padova-2020-07.yaml
     """
     from linkcli.answers.explain import explain as text
+    _not_an_input(output, file)
     _emit(text(_load(file, k)), output)
 
 
@@ -156,16 +280,22 @@ def batch(file, ks, form, decimals, output):
     from linkcli.input.source import load_file
     from linkcli.answers.formats import fmt
     digits = batch_mod.parse_k(ks)
+    _not_an_input(output, file)
     try:
         doc = load_file(file)
-        columns, units, rows, shown = batch_mod.run(doc, digits)
+        columns, units, rows, shown, failures = batch_mod.run(doc, digits)
     except LinkcliError as exc:
         raise exc.located(file)
+    for k, exc in failures:     # one line per digit that fails; the others' rows follow
+        _echo(batch_mod.failure_text(k, exc), err=True,
+              prefix=f"linkcli: {_style('error:', fg='red', bold=True)} ")
     decimals = shown if decimals is None else decimals
     if form == "json":
         import json
         data = [dict(zip(["k"] + columns, row)) for row in rows]
-        text = json.dumps({"file": file, "units": units, "rows": data}, indent=2)
+        extra = {"errors": [{"k": k, "error": str(exc)} for k, exc in failures]} \
+            if failures else {}
+        text = json.dumps({"file": file, "units": units, "rows": data, **extra}, indent=2)
     elif form == "csv":
         header = ["k"] + [f"{c} [{units[c]}]" for c in columns]
         body = [",".join(str(r[0]) if i == 0 else fmt(v, decimals) for i, v in enumerate(r))
@@ -176,7 +306,10 @@ def batch(file, ks, form, decimals, output):
         header = ["k"] + [f"{c}\n[{units[c]}]" for c in columns]
         body = [[r[0]] + [fmt(v, decimals) for v in r[1:]] for r in rows]
         text = tabulate(body, headers=header, disable_numparse=True, stralign="right")
-    _emit(text, output)
+    if rows or form == "json":
+        _emit(text, output)
+    if failures:                # invalid data for a digit (2) outranks unsolvable (3)
+        sys.exit(min(exc.exit_code for _, exc in failures))
 
 
 @cli.command()
@@ -204,9 +337,10 @@ def check(paths, verbose):
         word = line.split(" ", 1)[0]
         if _quiet() and word not in ("FAIL", "ERROR") and line is not lines[-1]:
             continue
+        prefix = ""
         if word in colours:
-            line = _style(word, fg=colours[word], bold=True) + line[len(word):]
-        click.echo(line)
+            prefix, line = _style(word, fg=colours[word], bold=True), line[len(word):]
+        _echo(line, prefix=prefix)
     if not ok:
         sys.exit(1)
 
@@ -239,6 +373,7 @@ def plot(file, sweep, frf, modes, free, names, k, output):
     if len(chosen) != 1:
         raise InputError("give one of --sweep, --frf, --modes, --free", key="plot",
                          hint="--sweep FROM:TO:STEPS --y NAME for a mechanism with a driver")
+    _not_an_input(output, file)
     mech = _load(file, k)
     if sweep:
         from linkcli.pictures.plotting import plot as make
@@ -265,6 +400,7 @@ def draw(file, k, output):
       linkcli draw mechanisms/padova-2020-07.yaml -o mechanism.png
     """
     from linkcli.pictures.plotting import draw as make
+    _not_an_input(output, file)
     make(_load(file, k), output)
 
 
@@ -284,12 +420,13 @@ def animate(file, sweep, fps, k, output):
       linkcli animate mechanisms/padova-2020-07.yaml --sweep 120:140:20 -o lift.gif
     """
     from linkcli.pictures.plotting import animate as make
+    _not_an_input(output, file)
     make(_load(file, k), output, sweep, fps)
 
 
 @cli.command()
 @click.argument("files", nargs=-1, required=True)
-@click.option("--k", "k", type=int, default=None,
+@click.option("--k", "k", type=int, default=None, callback=_digit,
               help="Check this digit only (default: the file's k and every other digit).")
 def validate(files, k):
     """Check FILES without solving: every problem at once, with its key and line.
@@ -312,16 +449,16 @@ def validate(files, k):
     for path in files:
         outcome = validate_file(path, k)
         for line in outcome.problems:
-            click.echo(line)
+            _echo(line)
         if outcome.exit_code:   # invalid input (2) outranks an unsolvable structure (3)
             worst = 2 if 2 in (worst, outcome.exit_code) else outcome.exit_code
             if not _quiet():
                 count = len(outcome.problems)
-                click.echo(f"{_style('FAIL', fg='red', bold=True)} {outcome.file}: {count} "
-                           f"problem{'s' if count != 1 else ''}")
+                _echo(f" {outcome.file}: {count} problem{'s' if count != 1 else ''}",
+                      prefix=_style('FAIL', fg='red', bold=True))
         elif not _quiet():
-            click.echo(f"{_style('OK', fg='green', bold=True)} {outcome.file} "
-                       f"({outcome.summary})")
+            _echo(f" {outcome.file} ({outcome.summary})",
+                  prefix=_style('OK', fg='green', bold=True))
     if worst:
         sys.exit(worst)
 
@@ -363,14 +500,14 @@ def init(path, force):
     from importlib.resources import files
     text = files("linkcli.input").joinpath("templates", "mechanism.yaml").read_text(encoding="utf-8")
     if path == "-":
-        click.echo(text, nl=False)
+        _echo(text, nl=False)
         return
     if os.path.exists(path) and not force:
         raise InputError("file exists", file=path, hint="use --force to overwrite it, or "
                          "give another name")
     _emit(text.rstrip("\n"), path)
     if not _quiet():
-        click.echo(f"wrote {path}; next: linkcli validate {path} && linkcli solve {path}")
+        _echo(f"wrote {path}; next: linkcli validate {path} && linkcli solve {path}")
 
 
 def _tol(tol):
@@ -410,13 +547,33 @@ def sweep(file, start, stop, steps, step, form, every, names, decimals, method, 
       linkcli sweep mechanisms/padova-2020-07.yaml --from 100 --to 160 --step 5 --format table
     """
     from linkcli.answers import sweep as sweep_mod
+    _not_an_input(output, file)
     mech = _load(file, k)
-    q = sweep_mod.driver_values(start, stop, steps, step)
+    q = sweep_mod.driver_range(start, stop, steps, step)
     chosen = [n.strip() for n in names.split(",") if n.strip()] if names else None
-    result = sweep_mod.sweep(mech, q, chosen, method=method, tol=_tol(tol))
-    for issue in result.issues:
-        click.echo(f"linkcli: {issue.text()}", err=True)
-    _emit(sweep_mod.render(result, form, every, decimals), output)
+    sweep_mod.check_every(every)
+    sweeper = sweep_mod.Sweeper(mech, q, chosen, method=method, tol=_tol(tol))
+    opened = []
+
+    def put(text):      # rows are printed as each block is solved; the file opened then
+        if output is None:
+            _echo(text, nl=False)
+            return
+        try:
+            if not opened:
+                opened.append(open(output, "w", encoding="utf-8"))
+            opened[0].write(_clean(text))
+        except OSError as exc:
+            raise InputError(f"cannot write output file: {exc.strerror}", file=output,
+                             hint="check the folder exists and is writable") from None
+
+    try:
+        issues = sweep_mod.write(sweeper, form, every, decimals, put)
+    finally:
+        for handle in opened:
+            handle.close()
+    for issue in issues:
+        _echo(issue.text(), err=True, prefix="linkcli: ")
 
 
 GLOBAL_FLAGS = ("--quiet", "--traceback")
@@ -433,35 +590,135 @@ def main(args=None, prog_name="linkcli") -> int:
     """Run the CLI; return the exit status instead of raising."""
     args = _global_options_first(list(sys.argv[1:] if args is None else args))
     show_traceback = "--traceback" in args
+    with _signals():
+        try:
+            return _run(args, prog_name, show_traceback)
+        except _Signalled as exc:       # Ctrl-C 130, SIGTERM 143: nothing printed
+            return 128 + exc.signum
+        except _PipeClosed:             # '| head': the reader has what it wanted
+            return 128 + signal.SIGPIPE
+
+
+def _run(args, prog_name, show_traceback) -> int:
     try:
         with warnings.catch_warnings():
             # NumPy's floating-point warnings: results are checked to be finite instead
             warnings.filterwarnings("ignore", r"(invalid value|overflow|divide by zero)",
                                     RuntimeWarning)
-            cli.main(args=args, prog_name=prog_name, standalone_mode=False)
+            try:
+                cli.main(args=args, prog_name=prog_name, standalone_mode=False)
+                status = 0
+            except SystemExit as exc:
+                status = exc.code if isinstance(exc.code, int) else 0
+        _flush_stdout()
+        return status
     except LinkcliError as exc:
         if show_traceback:
             raise
-        click.echo(f"linkcli: {_style('error:', fg='red', bold=True)} {exc}", err=True)
+        _echo(exc, err=True, prefix=f"linkcli: {_style('error:', fg='red', bold=True)} ")
         return exc.exit_code
-    except click.exceptions.Abort:
-        click.echo("linkcli: aborted", err=True)
+    except click.exceptions.Abort as exc:
+        if isinstance(exc.__context__, KeyboardInterrupt):
+            return 130              # Ctrl-C outside main()'s handler: nothing printed
+        _echo("linkcli: aborted", err=True)
         return 1
     except click.ClickException as exc:
         exc.show()
         return 2
-    except SystemExit as exc:
-        return exc.code if isinstance(exc.code, int) else 0
     except KeyboardInterrupt:
         return 130
-    except Exception:  # a bug: say so briefly, traceback on request
+    except Exception as exc:  # a bug: say so briefly, traceback on request
+        if isinstance(exc, OSError) and _writing_stdout(exc):   # click's own (--help)
+            return _report_output_error(exc)
         if show_traceback:
             raise
-        click.echo("linkcli: internal error (please report it; rerun with --traceback for "
-                   "details)", err=True)
+        _echo("linkcli: internal error (please report it; rerun with --traceback for "
+              "details)", err=True)
         return 70
-    return 0
+
+
+def _flush_stdout():
+    """Flush standard output here, so that a failed write is reported, not left to exit."""
+    stream = sys.stdout
+    if stream is None:
+        return
+    try:
+        stream.flush()
+    except OSError as exc:
+        _output_failed(exc)
+
+
+def _writing_stdout(exc: OSError) -> bool:
+    """Whether ``exc`` was raised by click.echo writing to standard output."""
+    tb = exc.__traceback__
+    while tb is not None:
+        stream = tb.tb_frame.f_locals.get("file") if tb.tb_frame.f_code.co_name == "echo" \
+            else None
+        if stream is not None and (stream is sys.stdout or
+                                   getattr(stream, "name", None) == "<stdout>"):
+            return True
+        tb = tb.tb_next
+    return False
+
+
+def _report_output_error(exc: OSError) -> int:
+    """Report click's own failed write like ours (a closed pipe still ends quietly)."""
+    try:
+        _output_failed(exc)       # raises
+    except InputError as error:
+        _echo(error, err=True, prefix=f"linkcli: {_style('error:', fg='red', bold=True)} ")
+        return error.exit_code
+    return 2                      # pragma: no cover
 
 
 def entry():  # pragma: no cover - console script
     sys.exit(main())
+
+
+@cli.command()
+@click.argument("file")
+@click.option("--to", "target", type=click.Choice(["moodle", "html", "markdown"]),
+              required=True, help="moodle: a Moodle XML question bank; html or markdown: a "
+              "worked solution.")
+@click.option("--k", "k_text", default=None, metavar="K",
+              help="Digits: 0-9, 1,3,5 or one digit (default: the file's own).")
+@click.option("--lang", type=click.Choice(["it", "en"]), default="it", show_default=True)
+@click.option("--decimals", type=click.IntRange(0, 12), default=None,
+              help="Decimals of the answers (default: the file's report.decimals).")
+@click.option("--tolerance", type=float, default=None,
+              help="Moodle: absolute tolerance of every answer (default: the file's "
+              "quiz.tolerance, or half a unit of the last decimal).")
+@click.option("--no-figure", is_flag=True, help="Leave the figure out.")
+@click.option("-o", "--output", required=True, help="File to write.")
+@click.option("--force", is_flag=True, help="Replace the output file if it exists.")
+def export(file, target, k_text, lang, decimals, tolerance, no_figure, output, force):
+    """Export FILE for a course: a Moodle quiz with every digit's variant, or a worked
+    solution to hand out.
+
+    \b
+    Examples:
+      linkcli export mechanisms/padova-2020-02.yaml --to moodle --k 0-9 -o quiz.xml
+      linkcli export mechanisms/padova-2020-07.yaml --to html --lang it -o solution.html
+    """
+    import os
+    from linkcli.answers.batch import parse_k
+    from linkcli.input.source import load_file
+    if os.path.exists(output) and not force:
+        raise InputError("the output file exists", file=output, key="-o",
+                         hint="give --force to replace it, or another name")
+    doc = load_file(file)
+    ks = parse_k(k_text) if k_text is not None else None
+    if target == "moodle":
+        from linkcli.exports.moodle import export as make
+        text = make(doc, ks, decimals=decimals, tolerance=tolerance, lang=lang,
+                    figure=not no_figure)
+    else:
+        if ks is not None and len(ks) > 1:
+            raise InputError("a worked solution is for one digit", key="--k",
+                             hint="give one digit, e.g. --k 3")
+        from linkcli.exports import worked
+        from linkcli.input.document import build
+        mech = build(doc, ks[0] if ks else None)
+        items = worked.blocks(mech, lang, figure=not no_figure and target == "html")
+        text = worked.to_html(items, lang) if target == "html" else worked.to_markdown(items)
+    _emit(text.rstrip("\n"), output)

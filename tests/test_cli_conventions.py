@@ -18,22 +18,13 @@ from linkcli import __version__
 from linkcli.cli import cli, main
 from linkcli.errors import InputError
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cli_helpers import run  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXAMPLES = os.path.join(ROOT, "docs", "examples")
 MECH = os.path.join(ROOT, "mechanisms", "padova-2020-07.yaml")
 ESC = "\x1b["
-
-
-def run(args, stdin=""):
-    """linkcli in-process: (exit status, stdout, stderr)."""
-    out, err = io.StringIO(), io.StringIO()
-    saved, sys.stdin = sys.stdin, io.StringIO(stdin)
-    try:
-        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-            code = main([str(a) for a in args])
-    finally:
-        sys.stdin = saved
-    return code, out.getvalue(), err.getvalue()
 
 
 def example(name):

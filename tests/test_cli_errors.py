@@ -230,9 +230,13 @@ def test_file_not_found(tmp_path, capsys):
 
 @pytest.mark.parametrize("k", ["12", "-1", "10"])
 def test_k_option_out_of_range(tmp_path, capsys, k):
-    code, err = _run(tmp_path, capsys, BASE, extra=["--k", k])
-    assert code == 2
-    assert "key 'k'" in err and "0-9" in err, err
+    """One error, blamed on the option (not on the file, which is not read)."""
+    path = tmp_path / "mech.yaml"
+    path.write_text(BASE, encoding="utf-8")
+    assert main(["solve", str(path), "--k", k]) == 2
+    out, err = capsys.readouterr()
+    assert (out, err) == ("", f"linkcli: error: key '--k': k must be a digit 0-9, got {k} "
+                              "(k is the last digit of the matricola)\n")
 
 
 def test_k_in_file_out_of_range(tmp_path, capsys):

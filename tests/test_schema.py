@@ -120,6 +120,8 @@ _ALWAYS_LOADER = [           # messages of rules that need the rest of the file
     r"names a rolling contact already",
     r"^a disc cannot roll on itself",
     r"section to score",
+    r"^a harmonic force needs a non-zero",
+    r"^a harmonic (force|torque) is",
     r"^the road gives Omega",
     r"is both fixed \(frame\) and moving",
     r"belongs to no link, slider or actuator",

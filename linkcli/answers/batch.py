@@ -5,7 +5,7 @@ import numpy as np
 
 from linkcli.answers.quantities import report_names
 from linkcli.answers.sheet import evaluate
-from linkcli.errors import InputError
+from linkcli.errors import InputError, LinkcliError
 from linkcli.input.document import build
 
 
@@ -33,14 +33,22 @@ def parse_k(text: str) -> list[int]:
 
 
 def run(doc, ks: list[int]):
-    """Return (columns, units, rows, decimals): a row per k with every report value."""
+    """Return (columns, units, rows, decimals, failures): a row per k with every report
+    value, and (k, error) for each digit that cannot be built or solved (the other
+    digits' rows are kept).  An error that every digit meets alike is raised instead:
+    it is the file's, not one student's data."""
     rows = []
+    failures: list[tuple[int, LinkcliError]] = []
     decimals = 1
     columns: list[str] = []
     units: dict = {}
     for k in ks:
-        mech = build(doc, k)
-        result = evaluate(mech, )
+        try:
+            mech = build(doc, k)
+            result = evaluate(mech, )
+        except LinkcliError as exc:
+            failures.append((k, exc.located(doc.name)))
+            continue
         if not columns:
             decimals = mech.report.get("decimals", 1)
             names = report_names(mech)
@@ -53,4 +61,17 @@ def run(doc, ks: list[int]):
         for p, (x, y) in result.points.items():
             values["x" + p], values["y" + p] = x, y
         rows.append([k] + [float(np.asarray(values[c])) for c in columns])
-    return columns, units, rows, decimals
+    if not rows and len({str(e) for _, e in failures}) == 1:
+        raise failures[0][1]        # the same error for every digit: the file's, once
+    return columns, units, rows, decimals, failures
+
+
+def failure_text(k: int, exc: LinkcliError) -> str:
+    """One failing digit's line: the file (line, key), the digit, what is wrong."""
+    where = ", ".join(part for part in (exc.where(), f"k={k}") if part)
+    text = f"{where}: {exc.detail}" + (f" ({exc.hint})" if exc.hint else "")
+    errors = getattr(exc, "errors", None)
+    if errors and len(errors) > 1:      # several input problems for this digit
+        text = f"{where}: {len(errors)} problems:\n" + "\n".join(
+            "  " + InputError.__str__(e) for e in errors)
+    return text

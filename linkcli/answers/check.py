@@ -2,8 +2,11 @@
 
 A computed value agrees with a printed one when it rounds to it at the
 printed precision: ``|computed - printed| <= 0.5 * 10**-decimals`` (angles
-compared modulo a full turn).  Printed values marked ``wrong`` in the file are
-reported as known key problems, never as failures.
+compared modulo a full turn), the decimals of scientific notation being those
+of the mantissa less the exponent (``3.35e3`` is printed to tens).  Printed
+values marked ``wrong`` in the file are reported as known key problems, never
+as failures; keys of the rates of loads are refused (loads are solved, their
+rates are not).
 """
 from __future__ import annotations
 
@@ -14,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.answers.sheet import evaluate
+from linkcli.answers.sweep import load_rate_error
 from linkcli.errors import LinkcliError
 from linkcli.input.document import build
 from linkcli.model.mechanism import split_rate
@@ -64,6 +68,8 @@ def collect(paths) -> list[str]:
 
 
 def check_file(path: str) -> FileReport:
+    """Every key of the file at ``path`` compared: the mechanism is built once per digit,
+    and each digit's values are solved at once (linear in the number of keys)."""
     report = FileReport("<stdin>" if path == "-" else path)
     try:
         doc = load_file(path)
@@ -72,40 +78,114 @@ def check_file(path: str) -> FileReport:
         report.error = str(exc.located(path))
         return report
     report.keys = len(base.keys)
+    digits: dict = {}            # k -> (mechanism, error)
     for key in base.keys:
+        k = base.k if key.k is None else key.k
+        if k not in digits:
+            try:
+                digits[k] = (base if k == base.k else build(doc, key.k), None)
+            except LinkcliError as exc:
+                digits[k] = (None, exc)
+    solved = {k: _solve(mech, [e for key in base.keys if (base.k if key.k is None else key.k)
+                                == k for e in key.entries])
+              for k, (mech, error) in digits.items() if error is None}
+    for key in base.keys:
+        k = base.k if key.k is None else key.k
+        mech, error = digits[k]
+        where = "" if key.k is None else f"k = {key.k}: "
         try:
-            mech = base if key.k is None or key.k == base.k else build(doc, key.k)
-            report.outcomes += _check_key(mech, key)
+            if error is not None:
+                raise error
+            entries = [e for e in key.entries if not _load_rate(mech, e)]
+            for entry in key.entries:
+                if _load_rate(mech, entry):     # refused, located; the others compared
+                    report.error = where + str(load_rate_error(
+                        entry.name, split_rate(entry.name)[0], file=mech.file or path,
+                        line=entry.line, key=f"keys.values.{entry.name}"))
+            report.outcomes += _check_key(mech, entries, solved[k])
         except LinkcliError as exc:
-            report.error = f"k = {key.k}: {exc.located(path)}"
+            report.error = where + str(exc.located(path))
     return report
 
 
-def _check_key(mech, key) -> list[Outcome]:
+def _load_rate(mech, entry) -> bool:
+    """Whether ``entry`` is the rate of a load, which linkcli does not compute."""
+    base, order = split_rate(entry.name)
+    quantity = mech.quantities.get(base)
+    return bool(order) and quantity is not None and quantity.kind == "load" and \
+        not _is_point(mech, entry)
+
+
+def _names(mech, entries) -> list:
+    """The names to solve for ``entries``: a point's key is its x and y."""
     names = []
-    for entry in key.entries:
-        if _is_point(mech, entry):
-            names += ["x" + entry.name, "y" + entry.name]
-        else:
-            names.append(entry.name)
-    result = evaluate(mech, names=names)
+    for entry in entries:
+        if _load_rate(mech, entry):
+            continue                      # refused by check_file, where it is located
+        names += ["x" + entry.name, "y" + entry.name] if _is_point(mech, entry) else [entry.name]
+    return list(dict.fromkeys(names))
+
+
+def _solve(mech, entries):
+    """The values of every name of ``entries`` at once, or the error (then each key is solved
+    alone, so that a name that fails only fails the keys that hold it)."""
+    try:
+        return evaluate(mech, names=_names(mech, entries))
+    except LinkcliError as exc:
+        return exc
+
+
+def _check_key(mech, entries, solved=None) -> list[Outcome]:
+    """The outcome of each of ``entries`` (a key's), with the values ``solved`` for the whole
+    digit, or solved here for these entries alone."""
+    if not entries:
+        return []
+    result = solved if solved is not None and not isinstance(solved, LinkcliError) else \
+        evaluate(mech, names=_names(mech, entries))
     out = []
-    for entry in key.entries:
-        shown = max(entry.decimals, 1) if entry.value is None or entry.wrong else entry.decimals
+    for entry in entries:
+        decimals = _precision(entry)
+        shown = max(decimals, 1) if entry.value is None or entry.wrong else max(decimals, 0)
         if _is_point(mech, entry):
             computed = [float(result.values["x" + entry.name]), float(result.values["y" + entry.name])]
             ok = entry.value is not None and all(
-                agrees(c, p, entry.decimals, None) for c, p in zip(computed, entry.value))
+                agrees(c, p, decimals, None) for c, p in zip(computed, entry.value))
             text = "(" + ", ".join(f"{c:.{shown}f}" for c in computed) + ")"
         else:
             computed = float(np.asarray(result.values[entry.name]))
             period = _period(mech, entry.name, result.units[entry.name])
-            ok = entry.value is not None and agrees(computed, entry.value, entry.decimals, period)
+            ok = entry.value is not None and agrees(computed, entry.value, decimals, period)
             text = f"{computed:.{shown}f}"
         status = "known" if entry.wrong else ("pass" if ok else "fail")
         out.append(Outcome(mech.file, mech.k, entry.name, entry.printed, text, status,
                            entry.wrong or ""))
     return out
+
+
+def _precision(entry) -> int:
+    """The decimals a printed value is exact to: those of its mantissa less its exponent
+    (2.22e1: 1; 4e-1: 1; 3.35e3: -1, i.e. tens); for a point, the coarser of x and y."""
+    text = str(entry.printed).strip()
+    if isinstance(entry.value, tuple) and text.startswith("(") and text.endswith(")"):
+        parts = [p for p in text[1:-1].split(",")]
+        if len(parts) == 4:              # decimal commas: '(1,5, 2,25)'
+            parts = [parts[0] + "." + parts[1], parts[2] + "." + parts[3]]
+        found = [_printed_decimals(p) for p in parts if p.strip()]
+        return min(found) if found and len(found) == 2 and None not in found else \
+            entry.decimals
+    found = _printed_decimals(text)
+    return entry.decimals if found is None else found
+
+
+def _printed_decimals(text: str) -> int | None:
+    text = text.strip().replace(",", ".")
+    mantissa, _, exponent = text.lower().partition("e")
+    try:
+        shift = int(exponent) if exponent else 0
+    except ValueError:
+        return None
+    decimals = len(mantissa.split(".")[1]) if "." in mantissa else 0
+    return decimals - shift
 
 
 def _is_point(mech, entry) -> bool:

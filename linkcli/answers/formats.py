@@ -31,6 +31,10 @@ def fmt(value, decimals: int) -> str:
     if not math.isfinite(value):
         return str(value)
     text = f"{value:.{decimals}f}"
+    if float(text) == 0 and value != 0 and abs(value) >= 10.0 ** -(decimals + 6):
+        # too small for these decimals but not the rounding noise of a zero (under a
+        # millionth of the last decimal): two significant digits instead of a bare 0.0
+        return f"{value:.2g}"
     if text.startswith("-") and float(text) == 0:
         text = text[1:]
     return text

@@ -3,6 +3,14 @@
 Angles of a vector ``z = P_b - P_a`` and their rates follow from
 ``w = z'/z``: ``phi' = Im w``, ``phi'' = Im(z''/z - w^2)``; lengths:
 ``r' = r Re w``, ``r'' = r (Re(z''/z - w^2) + (Re w)^2)``.
+
+The textbook's questions (docs/schema.md, "quantities") come from the same positions,
+velocities and accelerations: speeds |v|, tangential and normal accelerations
+``Re(conj(v) a)/|v|`` and ``|Im(conj(v) a)|/|v|``, projections ``Re(conj(u) P)`` with
+rates ``Re(conj(u) v_P)``, rotations of bodies (``forces.motion``), instant centres
+``I = P + i v_P / omega``, joint forces (``forces.joint_forces``) and velocity ratios
+(rates at a unit driver rate).  Where one is undefined (a point at rest, a body that
+translates) it is a located SolveError, never NaN.
 """
 from __future__ import annotations
 
@@ -12,12 +20,27 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.errors import InputError, SolveError
+from linkcli.forces import motion
+from linkcli.kinematics.closed_form import own_coordinates, where_text
 from linkcli.kinematics.solvers import solver_for
-from linkcli.model.mechanism import REPORT_SECTIONS, split_rate
+from linkcli.model.mechanism import REPORT_SECTIONS, VIBRATION, Quantity, split_rate
 from linkcli.forces.statics import unknown_load
 from linkcli.model.units import ANGLE, FORCE, LENGTH, TORQUE
 
 TWO_PI = 2 * math.pi
+#: a point is at rest (its velocity has no direction) where its speed is at most AT_REST
+#: times the largest speed of the mechanism's points; a body translates where its angular
+#: velocity is at most AT_REST times the largest rate of the mechanism (the largest angular
+#: velocity of its bodies, or its largest speed over its size)
+AT_REST = 1e-9
+#: the display order of kinds whose value is itself a rate (a speed is a velocity)
+LEVEL = {"speed": 1, "relative_speed": 1, "acceleration": 2, "tangential_acceleration": 2,
+         "normal_acceleration": 2, "relative_acceleration": 2}
+#: the kinds of docs/schema.md's textbook quantities (speeds, projections, rotations ...)
+TEXTBOOK = ("speed", "acceleration", "tangential_acceleration", "normal_acceleration",
+            "along", "normal_to", "relative", "relative_speed", "relative_acceleration",
+            "rotation", "between", "instant_centre", "instant_centre_distance", "reaction",
+            "slider_force", "velocity_ratio")
 
 
 @dataclass
@@ -38,15 +61,43 @@ class Result:
 
 
 def needed_orders(mech, names):
+    """The highest order of rates (0, 1 or 2) solving ``names`` takes; a rate a quantity has
+    not (the rate of an acceleration) is refused here, before anything is solved."""
     orders = {0}
     for name in names:
         base, order = split_rate(name)
-        if base in mech.quantities and mech.quantities[base].kind != "load":
-            orders.add(order)
+        quantity = mech.quantities.get(base)
+        if quantity is not None and quantity.kind != "load":
+            require_rate(mech, name, quantity, order)
+            orders.add(_needs(mech, quantity, order))
         else:
             # loads need velocities (virtual work); with masses also accelerations
             orders.add(2 if mech.dynamics is not None else 1)
     return max(orders)
+
+
+def _needs(mech, quantity, order) -> int:
+    """The order of the kinematics that ``quantity``'s rate of ``order`` is computed from."""
+    kind = quantity.kind
+    if kind in ("reaction", "slider_force"):
+        return 2 if mech.dynamics is not None else 0
+    if kind in ("instant_centre", "instant_centre_distance", "velocity_ratio"):
+        return 1
+    return min(2, LEVEL.get(kind, 0) + order)
+
+
+def require_rate(mech, name, quantity, order) -> None:
+    """Refuse ``name``, the rate of ``order`` of ``quantity``, when it has no such rate."""
+    if order <= quantity.rates or quantity.kind in VIBRATION:
+        return
+    kind = quantity.kind.replace("_", " ")
+    has = "no rates" if quantity.rates == 0 else f"only one rate, {quantity.name}dot"
+    article = "an" if kind[0] in "aeiou" else "a"
+    raise InputError(f"'{name}' is not defined: '{quantity.name}' is {article} {kind}, which has "
+                     f"{has}",
+                     file=mech.file, key=f"quantities.{quantity.name}", line=quantity.line,
+                     hint="the rate of a speed is the tangential acceleration"
+                     if quantity.kind == "speed" else f"ask for '{quantity.name}' itself")
 
 
 def report_names(mech):
@@ -97,8 +148,9 @@ def collect(mech, solver, kin, names) -> Result:
     units = mech.units
     result = Result(mech, kinematics=kin)
     loads = _loads(mech, solver, kin, names)
+    context = Context(mech, solver, kin)
     for name in names:
-        value, unit = _value(mech, name, kin, loads)
+        value, unit = _value(mech, name, kin, loads, context)
         result.values[name] = value
         result.units[name] = unit
     l_unit, l_factor = units.display("length", 0)
@@ -139,10 +191,12 @@ def _loads(mech, solver, kin, names):
     return values
 
 
-def _value(mech, name, kin, loads):
+def _value(mech, name, kin, loads, context=None):
     base_name, order = split_rate(name)
     quantity = mech.quantities[base_name]
     units = mech.units
+    if quantity.kind in TEXTBOOK:
+        return _textbook(quantity, order, kin, context or Context(mech, None, kin))
     if quantity.kind == "load":
         load = mech.loads[quantity.a]
         value = loads[load.name]
@@ -164,6 +218,8 @@ def _value(mech, name, kin, loads):
         base = "length"
     else:
         value, base = _vector(quantity, kin, order)
+        if quantity.signed and order == 0:
+            value = signed_angle(value)
     unit, factor = units.display(base, order)
     if quantity.unit:
         unit, factor = _override(quantity.unit, base, order)
@@ -189,6 +245,11 @@ def wrap_angle(value, principal=False):
     else:
         value = np.mod(value, TWO_PI)
     return np.where(value > TWO_PI - 1e-12, 0.0, value)
+
+
+def signed_angle(value):
+    """An angle of [0, 2 pi) in (-pi, pi]."""
+    return np.where(value > math.pi, value - TWO_PI, value)
 
 
 def _relative(rates, a, b):
@@ -230,3 +291,253 @@ def _override(unit, base, order):
     """Display unit and SI factor for a quantity whose base unit is ``unit``."""
     factor = ANGLE[unit] if base == "angle" else LENGTH[unit]
     return unit + ["", "/s", "/s^2"][order], factor
+
+
+# --- the textbook's quantities (docs/schema.md, "quantities") -------------------------------
+class Context:
+    """What several quantities of one evaluation share, computed once when first asked:
+    the joint forces, the velocities per unit driver rate, the figure's positions, the
+    mechanism's largest speed, size and angular velocity."""
+
+    def __init__(self, mech, solver, kin):
+        self.mech, self.solver, self.kin = mech, solver, kin
+        self._cache = {}
+
+    def _once(self, key, make):
+        if key not in self._cache:
+            self._cache[key] = make()
+        return self._cache[key]
+
+    def _solver(self):
+        return self.solver if self.solver is not None else solver_for(self.mech)
+
+    def reactions(self):
+        from linkcli.forces.joint_forces import solve
+        return self._once("reactions", lambda: solve(self.mech, self.kin))
+
+    def unit(self):
+        """The velocities for a unit driver rate (q' = 1) at the same positions."""
+        return self._once("unit", lambda: self._solver().velocities(
+            self.kin.at_rest(), np.ones_like(self.kin.q)))
+
+    def figure(self) -> dict:
+        """The positions of the figure: solved at the file's own driver value."""
+        return self._once("figure", lambda: self._solver().positions(
+            own_coordinates(self.mech)).pos)
+
+    def speed(self):
+        """The largest speed of the mechanism's points, at each position (m/s)."""
+        def make():
+            top = 0.0
+            for v in self.kin.vel.values():
+                top = np.maximum(top, np.abs(v))
+            return top
+        return self._once("speed", make)
+
+    def size(self) -> float:
+        """The largest distance of a point from the first one (m), over the positions."""
+        def make():
+            pos = self.kin.pos
+            first = pos[self.mech.points[0]]
+            size = max(float(np.max(np.abs(np.asarray(pos[p] - first))))
+                       for p in self.mech.points)
+            return size if size > 0 else 1.0
+        return self._once("size", make)
+
+    def spin(self):
+        """The largest rate of the mechanism: its bodies' angular velocities and its
+        largest speed over its size (1/s), at each position."""
+        def make():
+            mech, kin = self.mech, self.kin
+            top = self.speed() / self.size()
+            for name in mech.bodies:
+                top = np.maximum(top, np.abs(motion.rotation(mech, name, kin.pos, kin.vel)[0]))
+            for disc in (mech.dynamics.discs.values() if mech.dynamics is not None else ()):
+                top = np.maximum(top, np.abs(motion.disc_spin(mech, disc, kin.pos, kin.vel)[0]))
+            return top
+        return self._once("spin", make)
+
+
+def _textbook(quantity, order, kin, context):
+    """(value, unit) of a textbook quantity's rate of ``order``, in display units."""
+    mech = context.mech
+    units = mech.units
+    kind = quantity.kind
+    if kind in ("reaction", "slider_force"):
+        unit = quantity.unit or units.names["force"]
+        return _force(quantity, context) / FORCE[unit] + 0 * kin.q, unit
+    if kind == "velocity_ratio":
+        return _ratio(quantity, context)
+    value, base, level = _si(quantity, order, kin, context)
+    unit, factor = units.display(base, level)
+    if quantity.unit:
+        unit, factor = _override(quantity.unit, base, level)
+    return np.asarray(value / factor + 0 * kin.q) + 0.0, unit
+
+
+def _si(quantity, order, kin, context):
+    """(SI value, 'length' or 'angle', display order) of a quantity's rate of ``order``."""
+    mech = context.mech
+    kind, a, b = quantity.kind, quantity.a, quantity.b
+    rates = (kin.pos, kin.vel, kin.acc)
+    if kind == "q":
+        return [kin.q, kin.qd, kin.qdd][order], mech.driver.base, order
+    elif kind in ("x", "y"):
+        z = rates[order].get(a, 0j)
+        return (np.real(z) if kind == "x" else np.imag(z)), "length", order
+    elif kind in ("angle", "length"):
+        value, base = _vector(quantity, kin, order)
+        return value, base, order
+    if kind in ("speed", "relative_speed"):
+        v = rates[1].get(a, 0j) if kind == "speed" else _relative(kin.vel, a, b)
+        if order == 0:
+            return np.abs(v), "length", 1
+        acc = rates[2].get(a, 0j) if kind == "speed" else _relative(kin.acc, a, b)
+        _require_moving(quantity, v, kin, context, "its rate (the tangential acceleration)")
+        return (np.conj(v) * acc).real / np.abs(v), "length", 2
+    if kind in ("acceleration", "relative_acceleration"):
+        acc = kin.acc.get(a, 0j) if kind == "acceleration" else _relative(kin.acc, a, b)
+        return np.abs(acc), "length", 2
+    if kind in ("tangential_acceleration", "normal_acceleration"):
+        v, acc = kin.vel.get(a, 0j), kin.acc.get(a, 0j)
+        _require_moving(quantity, v, kin, context, f"its {kind.replace('_', ' ')}")
+        part = (np.conj(v) * acc).real if kind == "tangential_acceleration" else \
+            np.abs((np.conj(v) * acc).imag)
+        return part / np.abs(v), "length", 2
+    if kind in ("along", "normal_to"):
+        z = kin.pos[b] - kin.pos[a]
+        u = z / np.abs(z) * (1 if kind == "along" else 1j)
+        return (np.conj(u) * rates[order].get(quantity.c, 0j)).real, "length", order
+    if kind == "relative":
+        z = kin.pos[b] - kin.pos[a] if order == 0 else _relative(rates[order], a, b)
+        return (np.real(z) if quantity.component == "x" else np.imag(z)), "length", order
+    if kind == "rotation":
+        return _rotation(quantity, order, kin, context), "angle", order
+    if kind == "between":
+        if order == 0:
+            z1, z2 = kin.pos[b] - kin.pos[a], kin.pos[quantity.d] - kin.pos[quantity.c]
+            value = wrap_angle(np.angle(z2 * np.conj(z1)), principal=True)
+            return (signed_angle(value) if quantity.signed else value), "angle", 0
+        first = _vector(Quantity("", "angle", a, b), kin, order)[0]
+        second = _vector(Quantity("", "angle", quantity.c, quantity.d), kin, order)[0]
+        return second - first, "angle", order
+    centre = _instant_centre(quantity, kin, context)
+    if kind == "instant_centre":
+        return (centre.real if quantity.component == "x" else centre.imag), "length", 0
+    return np.abs(kin.pos[b] - centre), "length", 0
+
+
+def _located(quantity, mech, detail, hint=None, error=SolveError):
+    return error(detail, file=mech.file, key=f"quantities.{quantity.name}", line=quantity.line,
+                 hint=hint)
+
+
+def _require_moving(quantity, v, kin, context, what):
+    """Refuse a direction of motion where the point (or the relative motion) is at rest."""
+    rest = np.abs(v) <= AT_REST * context.speed()
+    if not np.any(rest):
+        return
+    mech = context.mech
+    who = f"point {quantity.a}" if quantity.kind != "relative_speed" else \
+        f"the motion of {quantity.b} relative to {quantity.a}"
+    name = quantity.name + ("dot" if quantity.kind in LEVEL and LEVEL[quantity.kind] == 1 else "")
+    raise _located(quantity, mech, f"'{name}' is undefined "
+                   f"{where_text(mech, kin.q, np.broadcast_to(rest, np.shape(kin.q)))}: {who} "
+                   f"is at rest there (its velocity is 0), so {what} has no direction",
+                   hint="move the driver away from that position, or give the driver a rate")
+
+
+def _spinning(quantity, context):
+    """(the body's name for forces.motion, or the Disc) of a rotation or an instant centre."""
+    mech = context.mech
+    if quantity.of == "disc":
+        return None, mech.dynamics.discs[quantity.a]
+    if quantity.of == "rolling":
+        return mech.rolling[quantity.a].disc, None
+    if quantity.of == "actuator":
+        return quantity.a + ".cylinder", None
+    return quantity.a, None
+
+
+def _rotation(quantity, order, kin, context):
+    """The body's angle (its axis: first to second point, the guide of a slider, a to b of
+    an actuator; a disc of dynamics: discs: from the figure) and its rates omega, alpha."""
+    mech = context.mech
+    body, disc = _spinning(quantity, context)
+    if disc is None:
+        if order == 0:
+            z = motion.axis_vector(mech, body, kin.pos)
+            value = wrap_angle(np.angle(z), principal=True)
+            return signed_angle(value) if quantity.signed else value
+        omega, alpha = motion.rotation(mech, body, kin.pos, kin.vel,
+                                       kin.acc if order == 2 else None)
+        return omega if order == 1 else alpha
+    if order == 0:
+        guide = mech.bodies[disc.slider].guide
+        z = motion.guide_axis(mech, guide, kin.pos)
+        travel = (np.conj(z / np.abs(z)) * (kin.pos[disc.center] -
+                                             context.figure()[disc.center])).real
+        value = wrap_angle(-disc.side / disc.radius * travel)
+        return signed_angle(value) if quantity.signed else value
+    omega, alpha = motion.disc_spin(mech, disc, kin.pos, kin.vel,
+                                    kin.acc if order == 2 else None)
+    return omega if order == 1 else alpha
+
+
+def _instant_centre(quantity, kin, context):
+    """I = P + i v_P / omega of the body, P any of its points; refused where it translates."""
+    mech = context.mech
+    body, disc = _spinning(quantity, context)
+    if disc is None:
+        point = mech.bodies[body].points[0]
+        omega = motion.rotation(mech, body, kin.pos, kin.vel)[0]
+    else:
+        point = disc.center
+        omega = motion.disc_spin(mech, disc, kin.pos, kin.vel)[0]
+    still = np.abs(omega) <= AT_REST * context.spin()
+    if np.any(still):
+        raise _located(quantity, mech, f"'{quantity.name}' is undefined "
+                       f"{where_text(mech, kin.q, np.broadcast_to(still, np.shape(kin.q)))}: "
+                       f"body {quantity.a} does not turn there (omega = 0: it translates, or the "
+                       "mechanism is at rest), so it has no instant centre",
+                       hint="ask for a body that turns, or move the driver")
+    return kin.pos[point] + 1j * kin.vel.get(point, 0j) / omega
+
+
+def _force(quantity, context):
+    """The force of the pin on the body (a component or its magnitude), or a slider's N or
+    T, in N, from the Newton-Euler joint forces."""
+    reactions = context.reactions()
+    mech = context.mech
+    if quantity.kind == "slider_force":
+        pair = reactions.pairs[quantity.a]
+        return np.asarray(pair.normal if quantity.component == "normal" else pair.friction,
+                          dtype=float)
+    point, body = quantity.a, quantity.b
+    keys = [(point, body)] if quantity.of != "actuator" else \
+        [(point, body + ".cylinder"), (point, body + ".rod")]
+    key = next((k for k in keys if k in reactions.pins), None)
+    if key is None:
+        raise _located(quantity, mech, f"no pin at {point} acts on {body}",
+                       hint="pins: " + ", ".join(f"{p} on {b}" for p, b in reactions.pins),
+                       error=InputError)
+    force = reactions.pins[key]
+    if quantity.component == "x":
+        return np.real(force)
+    if quantity.component == "y":
+        return np.imag(force)
+    return np.abs(force)
+
+
+def _ratio(quantity, context):
+    """d(NAME)/dq = NAMEdot / qdot: NAME's rate at a unit driver rate, in NAME's unit per
+    driver unit."""
+    mech = context.mech
+    units = mech.units
+    target = mech.quantities[quantity.a]
+    value, base, _ = _si(target, 1, context.unit(), context)
+    unit, factor = units.display(base, 0)
+    if target.unit:
+        unit, factor = _override(target.unit, base, 0)
+    q_unit, q_factor = units.display(mech.driver.base, 0)
+    return np.asarray(value * q_factor / factor + 0 * context.kin.q) + 0.0, f"{unit}/{q_unit}"

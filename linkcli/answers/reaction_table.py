@@ -105,10 +105,12 @@ def append_report(text: str, mech, form: str, decimals: int, method="closed", to
     if form == "json":
         data = json.loads(text)
         data["reactions"] = as_dict(reactions)
+        data["warnings"] = [c.detail for c in reactions.cautions]
         return json.dumps(data, indent=2, allow_nan=True)
     if form == "csv":
         return "\n".join([text] + _csv_lines(as_dict(reactions)))
-    return text + "\n\n" + render(reactions, decimals)
+    notes = "".join(f"\nwarning: {c.detail}" for c in reactions.cautions)
+    return text + "\n\n" + render(reactions, decimals) + notes
 
 
 def _csv_lines(data) -> list[str]:
@@ -118,5 +120,5 @@ def _csv_lines(data) -> list[str]:
         for part, value in entry.items():
             if value is not None:
                 unit_name = data["torque_unit"] if part == "moment" else data["force_unit"]
-                lines.append(f"{joint} {part},{value!r},{unit_name}")
+                lines.append(f"{joint} {part},{float(value)!r},{unit_name}")
     return lines

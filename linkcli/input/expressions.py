@@ -122,7 +122,9 @@ class _Walker:
             return _finite(node.value, f"a number in expression '{_short(self.source)}'")
         if isinstance(node, ast.Name):
             if node.id not in self.scope:
-                known = ", ".join(sorted(self.scope)) or "none"
+                names = sorted(self.scope)      # at most 10: the text stays linear in the file
+                known = (", ".join(names[:10]) + (f" ... and {len(names) - 10} more"
+                                                  if len(names) > 10 else "")) or "none"
                 raise self.fail(f"unknown name '{node.id}' (known: {known})")
             return float(self.scope[node.id])
         if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):

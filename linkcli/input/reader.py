@@ -81,6 +81,8 @@ class Reader:
             number = expressions.evaluate(value, self.names)
         except ExpressionError as exc:
             raise self.error(path, exc.detail, exc.hint) from None
+        if kind == "angle":
+            return units.angle_to_si(number)
         if kind is not None:
             number *= units.factor(kind)
         return number
@@ -89,7 +91,9 @@ class Reader:
         if not isinstance(value, str) or not NAME.match(value):
             raise self.error(path, f"expected a {what} name, got {value!r}")
         if pool is not None and value not in pool:
-            known = ", ".join(sorted(pool)) or "none"
+            names = sorted(pool)        # at most 10: the text stays linear in the file
+            known = (", ".join(names[:10]) + (f" ... and {len(names) - 10} more"
+                                              if len(names) > 10 else "")) or "none"
             raise self.error(path, f"undefined {what} '{value}'", hint=f"defined: {known}")
         return value
 

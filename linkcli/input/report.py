@@ -1,12 +1,72 @@
 """Parsing of what the answer sheet asks: quantities, the report and the answer keys."""
 from __future__ import annotations
 
+import dataclasses
 import math
 
-from linkcli.model.mechanism import VIBRATION, AnswerKey, KeyEntry, Quantity, split_rate
+from linkcli.model.mechanism import FRAME, VIBRATION, AnswerKey, KeyEntry, Quantity, split_rate
 from linkcli.model.units import ANGLE, FORCE, FREQUENCY, LENGTH, TORQUE
 
 SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration", "points")
+#: the kinds of a geometric quantity, each the YAML key that asks for it
+GEOMETRY = ("angle", "length", "x", "y", "load", "speed", "acceleration",
+            "tangential_acceleration", "normal_acceleration", "along", "normal_to", "relative",
+            "relative_speed", "relative_acceleration", "rotation", "between", "instant_centre",
+            "instant_centre_distance", "reaction", "slider_force", "velocity_ratio")
+OF_POINT = ("speed", "acceleration", "tangential_acceleration", "normal_acceleration")
+OF_PAIR = ("relative", "relative_speed", "relative_acceleration")
+PROJECTIONS = ("along", "normal_to")
+ANGULAR = ("angle", "rotation", "between")
+COMPONENTS = {"relative": ("x", "y"), "instant_centre": ("x", "y"),
+              "reaction": ("x", "y", "magnitude"), "slider_force": ("normal", "friction")}
+#: quantities whose value is itself a rate: a speed is listed with the velocities (its
+#: rate with the accelerations), an acceleration with the accelerations
+LEVEL = {"speed": 1, "relative_speed": 1, "acceleration": 2, "tangential_acceleration": 2,
+         "normal_acceleration": 2, "relative_acceleration": 2}
+#: quantities of the position alone, listed with the positions or the velocities
+EITHER = ("instant_centre", "instant_centre_distance", "velocity_ratio")
+#: forces, listed with the statics
+FORCES = ("load", "reaction", "slider_force")
+#: the quantities a velocity ratio may be of: those whose rate is linear in the velocities
+RATIO_OF = ("q", "x", "y", "angle", "length", "along", "normal_to", "relative", "rotation",
+            "between")
+RATES = (0, 1, 2)
+SUFFIX = ("", "dot", "ddot")
+
+
+class _Names:
+    """Every name a file defines or makes (q, xP and yP, loads, quantities) and the names of
+    their rates (NAMEdot, NAMEddot): a name must mean one thing, so that 'dddot' is not
+    both the rate of 'dd' and the second rate of 'd'."""
+
+    def __init__(self):
+        self.taken: dict[str, tuple] = {}    # name -> (base, order, whose, what)
+
+    def claim(self, base: str, orders, whose: str, what: str):
+        """Take ``base`` and its rates for ``whose`` (a description; ``what`` names it in a
+        hint); return the clash (name, base, order, other's entry) when one is taken."""
+        for order in orders:
+            name = base + SUFFIX[order]
+            if name in self.taken and self.taken[name][2] != whose:
+                return name, base, order, self.taken[name]
+        for order in orders:
+            self.taken.setdefault(base + SUFFIX[order], (base, order, whose, what))
+        return None
+
+
+def split_base(name: str, order: int) -> str:
+    return name[:len(name) - len(SUFFIX[order])]
+
+
+def _bases(name: str) -> list[str]:
+    """Every name of which ``name`` may be a rate (or which it is)."""
+    return [split_base(name, order) for order in RATES
+            if name.endswith(SUFFIX[order]) and len(name) > len(SUFFIX[order])]
+
+
+def _same(q: Quantity, automatic: Quantity) -> bool:
+    """Whether ``q`` defines the automatic quantity again (a file may, to give it a unit)."""
+    return dataclasses.replace(q, unit=None) == automatic
 
 
 class AnswersSection:
@@ -16,19 +76,78 @@ class AnswersSection:
         spec = self.mapping(self.get(data, (), "quantities", required=False, default={}) or {},
                             ("quantities",))
         quantities = {"q": Quantity("q", "q")}
-        for p in pool:
+        names = _Names()
+        names.claim("q", RATES, "the driver's coordinate", "q")
+        for p in sorted(pool, key=lambda p: (len(p), p)):   # 'B' before 'Bd'
+            path = next(((s, p) for s in ("frame", "points") if (s, p) in self.doc.lines),
+                        ("points",))
+            for axis in "xy":
+                whose = f"the {axis} coordinate of point {p}"
+                clash = names.claim(axis + p, RATES, whose, f"point '{p}'")
+                if clash:
+                    self.block(self.name_clash, path, whose, f"point '{p}'", clash)
+                    break
             quantities["x" + p] = Quantity("x" + p, "x", p)
             quantities["y" + p] = Quantity("y" + p, "y", p)
         for name, load in loads.items():
+            clash = names.claim(name, (0,), f"the load {name}", f"load '{name}'")
+            if clash:
+                self.block(self.name_clash, ("loads", name), f"the load {name}",
+                           f"load '{name}'", clash)
             quantities[name] = Quantity(name, "load", name)
         self.failed = set()
         for name, value in spec.items():
             q = self.block(self.quantity, name, value, pool, loads, driver)
+            if q is not None and not (name in quantities and _same(q, quantities[name])):
+                # defining an automatic quantity again (to give it a unit) is allowed
+                clash = names.claim(name, tuple(range(q.rates + 1)),   # the rates it has
+                                    f"the quantity {name}", f"quantity '{name}'")
+                if clash:
+                    q = self.block(self.name_clash, ("quantities", name),
+                                   f"the quantity {name}", f"quantity '{name}'", clash)
             if q is not None:
                 quantities[name] = q
             else:
                 self.failed.add(name)
+        for name, q in list(quantities.items()):
+            if q.kind == "velocity_ratio" and not self.block(self.ratio_of, q, quantities):
+                del quantities[name]
+                self.failed.add(name)
         return quantities
+
+    def ratio_of(self, q, quantities) -> bool:
+        """Whether the quantity a velocity ratio is of is one whose rate is linear in the
+        velocities (its definition's own error is reported already when it failed)."""
+        path = ("quantities", q.name, "velocity_ratio")
+        if q.a in self.failed:
+            return False
+        if q.a not in quantities:
+            raise self.error(path, f"'{q.a}' is not a defined quantity",
+                             hint="a velocity ratio is d(NAME)/dq of a quantity NAME of the file, "
+                             "e.g. xE or phi2")
+        kind = quantities[q.a].kind
+        if kind not in RATIO_OF:
+            raise self.error(path, f"the velocity ratio of '{q.a}' ({_kind_text(kind)}) "
+                             "is not defined: it is d(NAME)/dq of a position quantity",
+                             hint="give an angle, length, coordinate, projection, relative "
+                             "coordinate, rotation or angle between vectors")
+        return True
+
+    def name_clash(self, path, whose, what, clash):
+        """Refuse a name that is already taken, or whose rates' names are (see _Names)."""
+        name, base, order, (other, theirs, other_whose, other_what) = clash
+        if order == theirs == 0:
+            raise self.error(path, f"the name '{name}' is already {other_whose}",
+                             hint=f"rename the {what.split()[0]}: a name means one thing")
+
+        def role(b, o, w):
+            told = "" if w == f"the quantity {b}" else f" ({w})"
+            return f"{('the name of', 'the rate of', 'the second rate of')[o]} {b}{told}"
+
+        raise self.error(path, f"'{name}' would be both {role(base, order, whose)} and "
+                         f"{role(other, theirs, other_whose)}",
+                         hint=f"rename {what} or {other_what}: rates are named NAMEdot and "
+                         "NAMEddot, so names ending in 'd' or 'dot' collide")
 
     def quantity(self, name, value, pool, loads, driver=None) -> Quantity:
         path = ("quantities", name)
@@ -38,27 +157,48 @@ class AnswersSection:
                              hint="rates are named automatically: phi1 -> phi1dot, phi1ddot")
         if isinstance(value, dict) and any(k in value for k in VIBRATION):
             return self.vibration_quantity(name, value, path, pool)
-        value = self.mapping(value, path, {"angle", "length", "x", "y", "load", "component",
-                                           "unit"})
-        kinds = [k for k in ("angle", "length", "x", "y", "load") if k in value]
+        value = self.mapping(value, path, set(GEOMETRY) | {"component", "unit", "point",
+                                                           "signed"})
+        kinds = [k for k in GEOMETRY if k in value]
         if len(kinds) != 1:
-            raise self.error(path, "give exactly one of angle, length, x, y, load")
+            if len(kinds) > 1 and set(kinds) <= set(GEOMETRY[:5]):
+                raise self.error(path, "give exactly one of angle, length, x, y, load")
+            raise self.error(path, "give exactly one of " + ", ".join(GEOMETRY) if not kinds
+                             else f"give exactly one kind of quantity, not {' and '.join(kinds)}",
+                             hint="see docs/schema.md, 'quantities'")
         kind = kinds[0]
         unit = value.get("unit")
         if unit is not None and not isinstance(unit, str):
             raise self.error(path + ("unit",), f"unit is a unit name, got {unit!r}")
-        table = {"angle": ANGLE, "load": None}.get(kind, LENGTH)
+        table = {"angle": ANGLE, "rotation": ANGLE, "between": ANGLE, "load": None,
+                 "reaction": FORCE, "slider_force": FORCE}.get(kind, LENGTH)
         if kind == "load" and isinstance(value["load"], str) and value["load"] in loads:
             load = loads[value["load"]]   # the unit the results use for this load
             torque = load.kind == "torque" or load.kind == "driver" and (
                 driver is None or driver.kind == "angle")
             table = TORQUE if torque else FORCE
+        if kind == "velocity_ratio" and unit is not None:
+            raise self.error(path + ("unit",), "a velocity ratio is in its quantity's unit per "
+                             "driver unit", hint="give the unit to the quantity it is of")
         if unit is not None and table is not None and unit not in table:
             raise self.error(path + ("unit",), f"unknown unit {unit!r} for a {kind} quantity",
                              hint="use one of " + ", ".join(table))
+        if "signed" in value:
+            if kind not in ANGULAR:
+                raise self.error(path + ("signed",), "'signed' is for angles (angle, rotation, "
+                                 "between)")
+            if not isinstance(value["signed"], bool):
+                raise self.error(path + ("signed",), f"signed is true or false, got "
+                                 f"{value['signed']!r}")
+        if "point" in value and kind not in PROJECTIONS:
+            raise self.error(path + ("point",), "'point' is for along and normal_to")
+        if kind in GEOMETRY[5:]:
+            line = self.doc.line(path)
+            return dataclasses.replace(self.textbook_quantity(name, kind, value, path, pool),
+                                       unit=unit, signed=value.get("signed", False), line=line)
         if kind in ("angle", "length"):
             a, b = self.pair(value[kind], path + (kind,), pool)
-            return Quantity(name, kind, a, b, unit=unit)
+            return Quantity(name, kind, a, b, unit=unit, signed=value.get("signed", False))
         if kind in ("x", "y"):
             return Quantity(name, kind, self.name(value[kind], path + (kind,), pool), unit=unit)
         load = self.name(value["load"], path + ("load",), loads, "load")
@@ -68,6 +208,121 @@ class AnswersSection:
         if component and loads[load].kind != "force":
             raise self.error(path + ("component",), "only forces have x and y components")
         return Quantity(name, "load", load, component=component, unit=unit)
+
+    def textbook_quantity(self, name, kind, value, path, pool) -> Quantity:
+        """Speeds and accelerations of points, projections, relative motion, rotations of
+        bodies, the angle between two vectors, instant centres, joint forces and velocity
+        ratios (see docs/schema.md, 'quantities')."""
+        where = path + (kind,)
+        arg = value[kind]
+        component = value.get("component")
+        if kind in COMPONENTS:
+            if component not in COMPONENTS[kind]:
+                *first, last = COMPONENTS[kind]
+                raise self.error(path + ("component",), f"component is {', '.join(first)} or "
+                                 f"{last}, got {component!r}")
+        elif "component" in value:
+            raise self.error(path + ("component",), f"a {kind} quantity has no component")
+        if kind in PROJECTIONS and "point" not in value:
+            raise self.error(path, "missing key 'point' (the point projected "
+                             f"{kind.replace('_', ' ')} the vector)",
+                             hint=f"e.g. {{{kind}: [A, B], point: P}}")
+        if kind in OF_POINT:
+            return Quantity(name, kind, self.name(arg, where, pool))
+        if kind in PROJECTIONS or kind in OF_PAIR:
+            a, b = self.pair(arg, where, pool)
+            point = self.name(value["point"], path + ("point",), pool) \
+                if kind in PROJECTIONS else None
+            return Quantity(name, kind, a, b, component=component, c=point)
+        if kind == "between":
+            if not isinstance(arg, list) or len(arg) != 2:
+                raise self.error(where, f"between takes two vectors [[A, B], [C, D]], got {arg!r}")
+            a, b = self.pair(arg[0], where + (0,), pool)
+            c, d = self.pair(arg[1], where + (1,), pool)
+            return Quantity(name, kind, a, b, c=c, d=d)
+        if kind == "velocity_ratio":       # its quantity is looked up once all are read
+            return Quantity(name, kind, self.name(arg, where, what="quantity"))
+        bodies, spinning = self.raw_bodies()
+        if kind in ("rotation", "instant_centre"):
+            return Quantity(name, kind, self.body(arg, where, spinning, kind), component=component,
+                            of=spinning[arg][0])
+        if kind == "instant_centre_distance":
+            body, point = self.two_names(arg, where, "[BODY, P]")
+            self.body(body, where + (0,), spinning, kind)
+            return Quantity(name, kind, body, self.name(point, where + (1,), pool),
+                            of=spinning[body][0])
+        if kind == "slider_force":
+            sliders = sorted(n for n, (what, _) in bodies.items() if what == "slider")
+            self.name(arg, where, what="slider")
+            if arg not in sliders:
+                raise self.error(where, f"undefined body '{arg}' for a slider force: it is not "
+                                 "a slider", hint="sliders: " + (", ".join(sliders) or "none"))
+            return Quantity(name, kind, arg, component=component, of="slider")
+        point, body = self.two_names(arg, where, "[POINT, BODY]")
+        point = self.name(point, where + (0,), pool)
+        fixed = set(self.doc.data.get("frame") or {}) if isinstance(
+            self.doc.data.get("frame"), dict) else set()
+        pins = dict(bodies, **{FRAME: ("frame", tuple(sorted(fixed)))})
+        body = self.name(body, where + (1,), pins, "body")
+        points = pins[body][1]
+        if points is not None and point not in points:
+            raise self.error(where + (0,), f"undefined point '{point}' on body '{body}'",
+                             hint=f"{'its points' if body != FRAME else 'fixed points'}: "
+                             + (", ".join(points) or "none"))
+        return Quantity(name, kind, point, body, component=component, of=pins[body][0])
+
+    def two_names(self, arg, where, form):
+        if not isinstance(arg, list) or len(arg) != 2:
+            raise self.error(where, f"expected two names {form}, got {arg!r}")
+        return arg
+
+    def body(self, value, where, spinning, kind) -> str:
+        """A body's name for a rotation or an instant centre."""
+        name = self.name(value, where, spinning, "body")
+        if kind != "rotation" and spinning[name][0] == "actuator":
+            raise self.error(where, f"undefined body '{name}' for an instant centre: the "
+                             "cylinder and the rod of an actuator turn together but have "
+                             "different instant centres", hint="ask for the instant centre "
+                             "of a link")
+        return name
+
+    def raw_bodies(self) -> tuple[dict, dict]:
+        """(bodies, spinning) as the file declares them (those sections are read before the
+        quantities, and report their own errors): ``bodies`` maps each link, slider and
+        actuator to (kind, its points or None); ``spinning`` adds the rolling contacts and
+        cords (their disc) and the discs of ``dynamics: discs:``, which take their name."""
+        data = self.doc.data if isinstance(self.doc.data, dict) else {}
+
+        def section(*keys):
+            spec = data
+            for key in keys:
+                spec = spec.get(key) if isinstance(spec, dict) else None
+            return spec if isinstance(spec, dict) else {}
+
+        def names(items):
+            return tuple(items) if isinstance(items, (list, dict)) and all(
+                isinstance(p, str) for p in items) else None
+
+        bodies = {}
+        for name, spec in section("links").items():
+            bodies.setdefault(name, ("link", names(spec.get("points"))
+                                     if isinstance(spec, dict) else None))
+        for name, spec in section("actuators").items():
+            bodies.setdefault(name, ("actuator", names(spec.get("points"))
+                                     if isinstance(spec, dict) else None))
+        for name, spec in section("sliders").items():
+            points = None
+            if isinstance(spec, dict) and isinstance(spec.get("point"), str):
+                carried = names(spec.get("carries") or {})
+                points = None if carried is None else (spec["point"],) + carried
+            bodies.setdefault(name, ("slider", points))
+        spinning = dict(bodies)
+        for key in ("rolling", "cords"):
+            for name in section(key):
+                spinning.setdefault(name, ("rolling", None))
+        for name in section("dynamics", "discs"):
+            spinning[name] = ("disc", None)
+        return bodies, spinning
 
     def vibration_quantity(self, name, value, path, pool) -> Quantity:
         """A quantity of the vibration analysis (see docs/vibrations.md)."""
@@ -170,7 +425,7 @@ class AnswersSection:
         if section == "points":
             self.name(name, path, pool)
             return True
-        if split_rate(name)[0] in getattr(self, "failed", ()):
+        if any(base in getattr(self, "failed", ()) for base in _bases(name)):
             return False            # its definition's error is reported already
         order = {"position": 0, "velocity": 1, "acceleration": 2, "statics": 0,
                  "vibration": 0}[section]
@@ -183,15 +438,43 @@ class AnswersSection:
                                  "natural frequencies, modes, matrices, equilibrium, amplitudes")
             return True
         if section == "statics":
+            if name in quantities and quantities[name].kind in FORCES:
+                return True
             if name not in quantities or quantities[name].kind != "load":
                 raise self.error(path, f"'{name}' is not a load", hint="statics lists loads")
             return True
-        if base is None or base[1] != order or base[0] not in quantities \
-                or quantities[base[0]].kind == "load":
+        quantity = quantities.get(base[0]) if base is not None else None
+        if quantity is None or quantity.kind == "load" or (
+                base[1] != order and quantity.kind not in LEVEL and quantity.kind not in EITHER
+                and quantity.kind not in FORCES):
             suffix = ["", "dot", "ddot"][order]
             raise self.error(path, f"'{name}' is not a defined quantity{' rate' if order else ''}",
                              hint=f"define it under 'quantities' and name it <quantity>{suffix}")
+        self.rate_of(name, quantity, base[1], path)
+        kinematic = ("position", "velocity", "acceleration")
+        if quantity.kind in FORCES:
+            raise self.error(path, f"'{name}' is not a defined quantity of the {section} section",
+                             hint="a joint force is listed under 'statics'")
+        allowed = {LEVEL.get(quantity.kind, 0) + base[1]}
+        if quantity.kind in EITHER:
+            allowed.add(1)
+        if order not in allowed:
+            raise self.error(path, f"'{name}' is not a defined quantity of the {section} section",
+                             hint=f"{_kind_text(quantity.kind)}"
+                             f"{' rate' if base[1] else ''} is listed under " +
+                             " or ".join(f"'{kinematic[o]}'" for o in sorted(allowed)))
         return True
+
+    def rate_of(self, name, quantity, order, path):
+        """Refuse a rate the quantity has not (a speed has one, an acceleration none)."""
+        if order <= quantity.rates:
+            return
+        has = {0: "no rates", 1: f"one rate ({quantity.name}dot)"}[quantity.rates]
+        raise self.error(path, f"'{name}' is not a defined quantity rate: "
+                         f"{_kind_text(quantity.kind)} has {has}",
+                         hint={"speed": "the rate of a speed is the tangential acceleration; "
+                               "ask for tangential_acceleration and normal_acceleration"}.get(
+                                   quantity.kind, f"ask for '{quantity.name}' itself"))
 
     def keys(self, data, quantities, loads, pool, report) -> tuple:
         spec = data.get("keys")
@@ -233,6 +516,12 @@ class AnswersSection:
             if base is None or base[0] not in quantities:
                 raise self.error(path, f"the key names '{name}', which the file does not define",
                                  hint="define it under 'quantities' or fix the name")
+            if base[1] > quantities[base[0]].rates and quantities[base[0]].kind != "load" \
+                    and quantities[base[0]].kind not in VIBRATION:
+                raise self.error(path, f"the key names '{name}', which the file does not define: "
+                                 f"'{base[0]}' has {quantities[base[0]].rates or 'no'} rate"
+                                 f"{'' if quantities[base[0]].rates == 1 else 's'}",
+                                 hint=f"compare '{base[0]}' itself")
         if wrong and not _readable(printed, is_point):
             # a garbled printed value: kept as printed, reported, never compared
             return KeyEntry(name, str(self.doc.raw.get(path, printed)), None, 0, wrong, line)
@@ -254,6 +543,12 @@ class AnswersSection:
         if not math.isfinite(value):
             raise self.error(path, f"printed value {text!r} is not finite")
         return value
+
+
+def _kind_text(kind: str) -> str:
+    """'a speed', 'an instant centre': a quantity's kind in words."""
+    words = kind.replace("_", " ")
+    return ("an " if words[0] in "aeiou" else "a ") + words
 
 
 def _readable(printed, is_point: bool) -> bool:

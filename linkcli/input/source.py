@@ -78,21 +78,59 @@ def load_text(text: str, name: str) -> Document:
 
 def load_file(path: str) -> Document:
     if path == "-":
-        import sys
-        text = sys.stdin.read(MAX_BYTES + 1)
-        if len(text) > MAX_BYTES:
-            raise InputError(f"input is larger than {MAX_BYTES // 1000} kB", file="<stdin>")
-        return load_text(text, "<stdin>")
+        return load_text(_read_stdin(), STDIN)
     try:
         with open(path, "rb") as handle:
             blob = handle.read(MAX_BYTES + 1)
     except OSError as exc:
         raise InputError(f"cannot read file: {exc.strerror}", file=path) from None
+    return load_text(_decode(blob, path, "file"), path)
+
+
+STDIN = "<stdin>"
+
+
+def _read_stdin() -> str:
+    """Standard input as text: bytes decoded as UTF-8 when it has them (a closed or
+    unreadable standard input, or bytes that are not UTF-8, are input errors)."""
+    import sys
+    stream = sys.stdin
+    if stream is None:       # started with standard input closed ('<&-')
+        raise InputError("cannot read standard input: it is closed", file=STDIN,
+                         hint="give a file, or pipe the mechanism into 'linkcli ... -'")
     try:
-        text = blob.decode("utf-8")
-    except UnicodeDecodeError:
-        raise InputError("file is not UTF-8 text", file=path) from None
-    return load_text(text, path)
+        binary = getattr(stream, "buffer", None)
+        if binary is not None:
+            data = binary.read(MAX_BYTES + 1)
+        else:                # a text stream without bytes (tests, embedding programs)
+            data = stream.read(MAX_BYTES + 1)
+    except UnicodeDecodeError as exc:
+        raise _not_utf8(exc, b"", STDIN, "input") from None
+    except (OSError, ValueError) as exc:   # ValueError: a closed file object
+        reason = getattr(exc, "strerror", None) or "it is closed"
+        raise InputError(f"cannot read standard input: {reason}", file=STDIN,
+                         hint="give a file, or pipe the mechanism into 'linkcli ... -'") \
+            from None
+    if len(data) > MAX_BYTES:
+        raise InputError(f"input is larger than {MAX_BYTES // 1000} kB", file=STDIN)
+    return _decode(data, STDIN, "input") if isinstance(data, bytes) else data
+
+
+def _decode(blob: bytes, name: str, what: str) -> str:
+    """``blob`` as UTF-8 text, or an error at the line and byte offset of the first bad byte."""
+    try:
+        return blob.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise _not_utf8(exc, blob, name, what) from None
+
+
+def _not_utf8(exc: UnicodeDecodeError, blob: bytes, name: str, what: str) -> InputError:
+    if not blob:             # decoded by the stream: its offset is not the input's
+        return InputError(f"{what} is not UTF-8 text", file=name, hint="save it as UTF-8")
+    bad = blob[exc.start]
+    return InputError(f"{what} is not UTF-8 text: byte 0x{bad:02x} at offset {exc.start}",
+                      file=name, line=blob.count(b"\n", 0, exc.start) + 1,
+                      hint="save it as UTF-8")
 
 
 class _Refused(Exception):

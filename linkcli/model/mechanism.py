@@ -143,6 +143,28 @@ class Quantity:
     of a mode shape, ``component`` the axis of a point's amplitude, ``elements``
     the springs and dampers of a force amplitude, ``time`` the instant of a free
     response (s).
+
+    The textbook's questions (docs/schema.md, "quantities"):
+
+    - 'speed', 'acceleration', 'tangential_acceleration', 'normal_acceleration' of
+      point ``a``;
+    - 'along' / 'normal_to': point ``c``'s position component along the unit vector
+      of a->b (or its left normal);
+    - 'relative' (``component`` x or y of b - a), 'relative_speed',
+      'relative_acceleration' (|v_b - v_a|, |a_b - a_a|);
+    - 'rotation': the angle of body ``a`` (``of`` says what the name is: 'link',
+      'slider', 'actuator', 'rolling' (a contact's or cord's disc) or 'disc' (of
+      ``dynamics: discs:``));
+    - 'between': the angle from vector a->b to vector c->d;
+    - 'instant_centre' (``component`` x or y) of body ``a``, and
+      'instant_centre_distance' from it to point ``b``;
+    - 'reaction': the force of the pin at point ``a`` on body ``b`` (``of``: its kind,
+      or 'frame'), ``component`` x, y or magnitude; 'slider_force' of slider ``a``,
+      ``component`` normal or friction;
+    - 'velocity_ratio': d(a)/dq of the quantity named ``a``.
+
+    ``signed`` prints an angle in (-180, 180] instead of [0, 360); ``line`` is where
+    the file defines the quantity, for errors found when it is evaluated.
     """
 
     name: str
@@ -153,6 +175,24 @@ class Quantity:
     unit: str | None = None
     elements: tuple = ()
     time: float = 0.0
+    c: str | None = None
+    d: str | None = None
+    of: str | None = None
+    signed: bool = False
+    line: int | None = field(default=None, compare=False)
+
+    @property
+    def rates(self) -> int:
+        """How many rates the quantity has: 2 (NAMEdot and NAMEddot), 1 or 0."""
+        if self.kind in ("q", "x", "y", "angle", "length", "along", "normal_to", "relative",
+                         "rotation", "between"):
+            return 2
+        return 1 if self.kind in ("speed", "relative_speed") else 0
+
+    @property
+    def angular(self) -> bool:
+        """Whether the quantity is an angle (compared modulo a turn, unless signed)."""
+        return self.kind in ("angle", "rotation", "between")
 
 
 #: the report's sections of named quantities, in the order of the answer sheet

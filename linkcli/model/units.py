@@ -40,6 +40,14 @@ FREQUENCY = {"rad/s": 1.0, "Hz": 2.0 * math.pi, "rpm": 2.0 * math.pi / 60.0}
 SPEED = {"m/s": 1.0, "km/h": 1.0 / 3.6, "mm/s": 0.001, "ft/s": FT, "mph": 1609.344 / 3600.0}
 TIME = {"s": 1.0, "ms": 0.001}
 
+# one turn in each angle unit that has an exact float value; radians are not reduced
+# (NumPy's sin and cos reduce a float in radians exactly)
+TURN = {"deg": 360.0}
+# Angles are reduced from this size on: below it the conversion to radians loses less
+# than 1e-11 rad, and an angle as written (a spring's free angle of several turns, a
+# driver value of 400 deg) is kept as written.
+REDUCE_ABOVE = 1e6
+
 KINDS = {
     "length": LENGTH,
     "angle": ANGLE,
@@ -83,6 +91,15 @@ class Units:
     def factor(self, kind: str) -> float:
         """SI value of one file unit of ``kind``."""
         return KINDS[kind][self.names[kind]]
+
+    def angle_to_si(self, value: float) -> float:
+        """An angle in the file's unit, in radians.  A huge angle in degrees is first
+        reduced to one turn exactly (``math.fmod`` is exact), so that 1e17 deg is the
+        angle of ``int(1e17) % 360`` and not what is left after rounding 1e17 * pi / 180."""
+        turn = TURN.get(self.names["angle"])
+        if turn is not None and abs(value) >= REDUCE_ABOVE:
+            value = math.fmod(value, turn)
+        return value * self.factor("angle")
 
     # display units of derived quantities -------------------------------------
     def display(self, base: str, order: int) -> tuple[str, float]:

@@ -8,13 +8,16 @@ What a picture shows is in :mod:`linkcli.scene`, how it is drawn in
 """
 from __future__ import annotations
 
+import contextlib
 import math
 import os
+import signal
 import tempfile
 
 import numpy as np
 
 from linkcli.answers.quantities import report_names, require_driver
+from linkcli.answers.sweep import listing
 from linkcli.answers.sheet import evaluate
 from linkcli.pictures.drawing import (COLORS, draw_elements, draw_loads, draw_masses,
                                       draw_mechanism, draw_polygon, figure)
@@ -26,6 +29,7 @@ from linkcli.pictures.scene import Scene, disc_points, disc_turns, extent
 
 IMAGE_FORMATS = ("png", "svg", "pdf")
 MAX_STEPS = 100_000
+MAX_FRAMES = 2000           # an animation's frames: a GIF of 2000 frames is ~3 minutes long
 
 
 # --- command-line requests -----------------------------------------------------------------
@@ -71,7 +75,7 @@ def check_names(mech, names):
         if not ok:
             shown = report_names(mech)
             raise InputError(f"'{name}' is not defined by this file", file=mech.file, key="--y",
-                             hint="its report defines: " + (", ".join(shown) or "nothing") +
+                             hint="its report defines: " + (listing(shown) or "nothing") +
                              "; define others under 'quantities'")
 
 
@@ -99,26 +103,46 @@ def _driver_text(mech) -> tuple[str, str, float]:
 
 # --- atomic writing --------------------------------------------------------------------------
 def _save(path: str, write, formats) -> None:
-    """Write a picture through ``write(tmp_path, ext)`` to a temporary file, then rename."""
+    """Write a picture through ``write(tmp_path, ext)`` to a temporary file, then rename.
+
+    Any exception on the way removes the temporary file, interruptions too (the command
+    line turns SIGINT and SIGTERM into exceptions); they are held back while the file is
+    created, so that it never exists without this function knowing its name."""
     ext = check_output(path, formats)
     folder = os.path.dirname(os.path.abspath(path))
+    tmp = None
     try:
-        handle, tmp = tempfile.mkstemp(prefix=".linkcli-", suffix="." + ext, dir=folder)
-    except OSError as exc:
-        raise _write_error(path, exc) from None
-    os.close(handle)
-    try:
+        with _signals_held():   # a signal held here is raised on leaving, with tmp known
+            handle, tmp = tempfile.mkstemp(prefix=".linkcli-", suffix="." + ext, dir=folder)
+        os.close(handle)
         write(tmp, ext)
         mask = os.umask(0)
         os.umask(mask)
         os.chmod(tmp, 0o666 & ~mask)
         os.replace(tmp, path)
     except OSError as exc:
-        _remove(tmp)
+        if tmp is not None:
+            _remove(tmp)
         raise _write_error(path, exc) from None
     except BaseException:
-        _remove(tmp)
+        if tmp is not None:
+            _remove(tmp)
         raise
+
+
+@contextlib.contextmanager
+def _signals_held():
+    """SIGINT and SIGTERM are delivered after the block, not inside it (where possible)."""
+    held = {signal.SIGINT, signal.SIGTERM}
+    try:
+        previous = signal.pthread_sigmask(signal.SIG_BLOCK, held)
+    except (AttributeError, OSError, ValueError):     # pragma: no cover - not POSIX
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
 
 def _write_error(path, exc) -> InputError:
@@ -138,13 +162,19 @@ def _save_figure(fig, path) -> None:
 
 
 # --- plot ------------------------------------------------------------------------------------
-def plot(mech, sweep: str, names, output: str, dpi: int = 100) -> None:
-    """Quantities ``names`` against the driver over ``sweep``, one panel each."""
+def plot(mech, sweep: str, names, output: str, dpi: int = 100, notify=None) -> list:
+    """Quantities ``names`` against the driver over ``sweep``, one panel each.
+
+    Driver values that cannot be solved are left blank, and what the sweep reports (ranges
+    that cannot be assembled, rows left out at a toggle, branch points) goes to ``notify``
+    (default: standard error, after 'linkcli: '); returns those reports."""
+    from linkcli.answers.sweep import sweep as solve_sweep
     check_output(output, IMAGE_FORMATS)
     require_driver(mech, "a plot against the driver")
     check_names(mech, names)
     q = parse_sweep(sweep)
-    result = evaluate(mech, q=q, names=list(dict.fromkeys(names)))
+    result = solve_sweep(mech, q, names=list(dict.fromkeys(names)))
+    _tell(result.issues, notify)
     what, q_unit, _ = _driver_text(mech)
     fig = figure(8.0, 1.2 + 2.4 * len(names), dpi)
     axes = fig.subplots(len(names), 1, sharex=True, squeeze=False)[:, 0]
@@ -154,17 +184,36 @@ def plot(mech, sweep: str, names, output: str, dpi: int = 100) -> None:
     axes[0].set_title(_wrap(mech.title))
     fig.tight_layout()
     _save_figure(fig, output)
+    return result.issues
+
+
+def _tell(issues, notify=None):
+    """Each report's text to ``notify``, by default to standard error as 'linkcli: ...'."""
+    if notify is None:
+        import sys
+
+        def notify(text):
+            try:
+                print(f"linkcli: {text}", file=sys.stderr, flush=True)
+            except (OSError, ValueError):
+                pass
+    for issue in issues:
+        notify(issue.text())
 
 
 def _panel(ax, mech, q, result, name, color):
-    """One quantity's curve against q."""
-    y = np.broadcast_to(np.asarray(result.values[name], dtype=float), q.shape)
+    """One quantity's curve against q: a line through each range of solved values, blank
+    between them (a lone solved value is a dot)."""
+    rows = np.nonzero(result.solved)[0]
+    y = np.broadcast_to(np.asarray(result.values[name], dtype=float), rows.shape)
     y = _continuous(mech, name, y, result.units[name])
-    ax.plot(q, y, color=color, lw=1.8)
+    cuts = np.nonzero(np.diff(rows) != 1)[0] + 1
+    for part, values in zip(np.split(rows, cuts), np.split(y, cuts)):
+        ax.plot(q[part], values, color=color, lw=1.8, marker="." if part.size == 1 else None)
     ax.set_ylabel(f"{name} [{result.units[name]}]")
     ax.grid(True, alpha=0.35)
     if q[0] != q[-1]:
-        ax.set_xlim(q[0], q[-1])
+        ax.set_xlim(min(q[0], q[-1]), max(q[0], q[-1]))
 
 
 def _continuous(mech, name, y, unit):
@@ -242,8 +291,12 @@ def _load_values(mech):
     return values, units_text
 
 
-def animate(mech, output: str, sweep: str | None = None, fps: int = 12, dpi: int = 80) -> int:
-    """The motion over ``sweep`` as an animated GIF (pillow writer); returns the frame count."""
+def animate(mech, output: str, sweep: str | None = None, fps: int = 12, dpi: int = 80,
+            notify=None) -> int:
+    """The motion over ``sweep`` as an animated GIF, at most MAX_FRAMES frames, each written
+    to the file as soon as it is drawn; branch points of the motion go to ``notify`` (as
+    for :func:`plot`).  Returns the frame count."""
+    from linkcli.answers.sweep import Sweeper
     check_output(output, ("gif",))
     require_driver(mech, "an animation")
     dyn = mech.dynamics
@@ -252,7 +305,17 @@ def animate(mech, output: str, sweep: str | None = None, fps: int = 12, dpi: int
     else:
         q = parse_sweep(sweep)
     what, q_unit, q_factor = _driver_text(mech)
+    if q.size > MAX_FRAMES:
+        step = abs(q[-1] - q[0]) / (MAX_FRAMES - 1)
+        raise InputError(f"{q.size} frames is more than the limit of {MAX_FRAMES}",
+                         key="--sweep", hint=f"use at most {MAX_FRAMES - 1} STEPS in --sweep "
+                         f"FROM:TO:STEPS, here a frame every {step:.3g} {q_unit} or more; at "
+                         f"{fps} fps, {MAX_FRAMES} frames play for {MAX_FRAMES / fps:.0f} s")
     kin = _positions(mech, q * q_factor)
+    branches = Sweeper(mech, q, quantities=False)
+    for _ in branches.blocks():
+        pass
+    _tell([i for i in branches.issues if i.kind == "branch"], notify)
     spins = disc_turns(mech, dyn, kin)
     scenes = [Scene(mech, kin.pos, i) for i in range(q.size)]
     every = _common_view(mech, dyn, scenes)
@@ -268,12 +331,55 @@ def animate(mech, output: str, sweep: str | None = None, fps: int = 12, dpi: int
 
 
 def _write_gif(fig, path, fps, dpi, frames) -> None:
-    """One GIF frame of ``fig`` for each item of ``frames`` (which draws it)."""
-    from matplotlib.animation import PillowWriter
-    writer = PillowWriter(fps=fps)
-    with writer.saving(fig, path, dpi):
+    """One GIF frame of ``fig`` for each item of ``frames`` (which draws it), written to
+    ``path`` as soon as the next one is drawn: memory stays that of two frames.
+
+    Each frame has its own palette (Pillow's adaptive one) and holds only the box that
+    changed since the previous frame; a frame equal to the previous one lengthens it.
+    ``path`` is the temporary file of :func:`_save`, removed when drawing fails or is
+    interrupted, so a partial GIF is never left in place."""
+    import io
+
+    import matplotlib as mpl
+    from PIL import Image, ImageChops
+    from PIL.GifImagePlugin import getdata, getheader
+
+    duration = int(1000 / fps)
+    width, height = (int(v * dpi) for v in fig.get_size_inches())    # as matplotlib's writers
+    with open(path, "wb") as fp, mpl.rc_context({"savefig.bbox": None}):
+        pending, previous = None, None            # [image, offset, duration], last RGB frame
+
+        def flush(frame, first):
+            image, offset, length = frame
+            if first:
+                header, _ = getheader(image, info={"loop": 0, "duration": length})
+                fp.write(b"".join(header))
+                fp.write(b"".join(getdata(image, offset, duration=length)))
+            else:
+                fp.write(b"".join(getdata(image, offset, duration=length,
+                                          include_color_table=True)))
+
+        written = 0
         for _ in frames:
-            writer.grab_frame()
+            buf = io.BytesIO()
+            fig.savefig(buf, format="rgba", dpi=dpi)
+            rgb = Image.frombuffer("RGBA", (width, height), buf.getbuffer(), "raw", "RGBA", 0,
+                                   1).convert("RGB")
+            box = (0, 0, width, height) if previous is None else \
+                ImageChops.difference(previous, rgb).getbbox()
+            if box is None:                       # the same picture: shown longer
+                pending[2] += duration
+                continue
+            if pending is not None:
+                flush(pending, written == 0)
+                fp.flush()
+                written += 1
+            part = rgb if box == (0, 0, width, height) else rgb.crop(box)
+            pending = [part.convert("P", palette=Image.Palette.ADAPTIVE), box[:2], duration]
+            previous = rgb
+        if pending is not None:
+            flush(pending, written == 0)
+        fp.write(b";")
 
 
 def _frames(ax, dyn, scenes, every, spins, titles):

@@ -243,3 +243,20 @@ def test_wheel_on_a_road_lifts_off_above_its_speed(speed, lifts):
     if lifts:
         assert "the wheel lifts off the road" in contact[0].detail
         assert float(result.values["Ft"]) > 6 * 9.81 * 50 / 6   # above m g = 490.5 N
+
+
+def test_sweep_leaves_out_the_dead_centre_rows(tmp_path, capsys):
+    path = tmp_path / "cs.yaml"
+    path.write_text(CRANK_SLIDER.format(q=0))
+    assert main(["sweep", str(path), "--from", "170", "--to", "190", "--steps", "4",
+                 "--format", "csv"]) == 0
+    out, err = capsys.readouterr()
+    rows = [line.split(",")[0] for line in out.splitlines()[1:]]
+    assert rows == ["170.0", "175.0", "185.0", "190.0"]
+    assert "the unknown load P does no work at q = 180 deg" in err and "rows left out" in err
+
+
+def test_rates_of_loads_are_refused_by_the_api():
+    mech = linkcli.loads(CRANK_SLIDER.format(q=30))
+    with pytest.raises(linkcli.LinkcliError, match="a load has no rates"):
+        mech.solve(names=["Pdot"])

@@ -121,6 +121,12 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
     """Solve ``mech`` at driver value(s) ``q`` (display units) and evaluate ``names``."""
     require_driver(mech, "solving at driver values")
     names = list(names) if names is not None else report_names(mech)
+    for name in names:
+        base, order = split_rate(name)
+        quantity = mech.quantities.get(base)
+        if quantity is not None and quantity.kind == "load" and order:
+            raise InputError(f"'{name}': a load has no rates", file=mech.file, key="names",
+                             hint=f"ask for the load itself, '{base}'")
     solver = solver_for(mech, method, tol)
     base = "angle" if mech.driver.kind == "angle" else "length"
     units = mech.units

@@ -16,14 +16,7 @@ class LoadsSection:
         spec = self.mapping(self.get(data, (), "driver"), path,
                             {"angle", "length", "x", "y", "value", "rate", "accel"},
                             ("value",))
-        kinds = [k for k in ("angle", "length", "x", "y") if k in spec]
-        if len(kinds) != 1:
-            raise self.error(path, "give exactly one of angle: [P, Q], length: [P, Q], x: P, y: P")
-        kind = kinds[0]
-        if kind in ("angle", "length"):
-            a, b = self.pair(spec[kind], path + (kind,), pool)
-        else:
-            a, b = self.name(spec[kind], path + (kind,), pool), None
+        kind, a, b = self.coordinate_kind(spec, path, pool)
         base = "angle" if kind == "angle" else "length"
         value = self.number(spec["value"], path + ("value",), base, units)
         rate_factor = units.factor("angular_rate") if base == "angle" else units.factor("length")
@@ -50,19 +43,24 @@ class LoadsSection:
                 out.append(c)
         return tuple(out)
 
-    def coordinate(self, name, value, path, units, pool, figure) -> Driver:
-        self.name(name, path, what="coordinate")
-        spec = self.mapping(value, path, {"angle", "length", "x", "y", "value"})
+    def coordinate_kind(self, spec, path, pool) -> tuple:
+        """(kind, a, b) of a driver or coordinate: angle or length of a -> b, x or y of a."""
         kinds = [k for k in ("angle", "length", "x", "y") if k in spec]
         if len(kinds) != 1:
             raise self.error(path, "give exactly one of angle: [P, Q], length: [P, Q], x: P, y: P")
         kind = kinds[0]
         if kind in ("angle", "length"):
-            a, b = self.pair(spec[kind], path + (kind,), pool)
+            return (kind,) + self.pair(spec[kind], path + (kind,), pool)
+        return kind, self.name(spec[kind], path + (kind,), pool), None
+
+    def coordinate(self, name, value, path, units, pool, figure) -> Driver:
+        self.name(name, path, what="coordinate")
+        spec = self.mapping(value, path, {"angle", "length", "x", "y", "value"})
+        kind, a, b = self.coordinate_kind(spec, path, pool)
+        if b is not None:
             z = figure.get(b, 0j) - figure.get(a, 0j)
             measured = cmath.phase(z) if kind == "angle" else abs(z)
         else:
-            a, b = self.name(spec[kind], path + (kind,), pool), None
             z = figure.get(a, 0j)
             measured = z.real if kind == "x" else z.imag
         if "value" in spec:

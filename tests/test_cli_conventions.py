@@ -3,8 +3,6 @@ input, --quiet, --traceback, exit codes, colour only on a terminal, -o, --lang,
 init, schema and validate."""
 from __future__ import annotations
 
-import contextlib
-import io
 import json
 import os
 import subprocess

@@ -3,8 +3,6 @@ file, terminal escapes from a file, huge angles, --k, batch with failing digits,
 ambiguous names, --method with --reactions.  Each test failed before its fix."""
 from __future__ import annotations
 
-import contextlib
-import io
 import json
 import math
 import os
@@ -16,7 +14,6 @@ import time
 import pytest
 
 import linkcli
-from linkcli.cli import main
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cli_helpers import CODE, FOURBAR, run  # noqa: E402

@@ -1,6 +1,5 @@
 """Newton-Raphson on the whole mechanism: cross-check with the closed form, the
 class-III example, branches, tolerances, rates against finite differences."""
-import glob
 import os
 import sys
 

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import linkcli
-from linkcli.forces import balance as power_balance, joint_forces, motion
+from linkcli.forces import joint_forces, motion
 from linkcli.kinematics.solvers import state
 from linkcli.cli import main
 from linkcli.errors import StructureError

@@ -12,13 +12,16 @@ from __future__ import annotations
 
 import math
 import os
+import sys
 
 import numpy as np
 import pytest
-import yaml
 
 import linkcli
 from linkcli.answers.check import check_file
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from vibration_cases import solve_file  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MECH = os.path.join(ROOT, "mechanisms")
@@ -37,23 +40,8 @@ def path_of(key):
 
 
 def solve(key, extra=None, params=None, report=None, **sections):
-    """Values of the file ``key``; ``extra`` quantities are added to its report,
-    ``params`` override its parameters, other sections replace the file's."""
-    with open(path_of(key)) as handle:
-        data = yaml.safe_load(handle)
-    for contact in (data.get("rolling") or {}).values():     # YAML 1.1 reads 'on:' as True
-        if True in contact:
-            contact["on"] = contact.pop(True)
-    data.pop("keys", None)
-    data["params"].update(params or {})
-    data.update(sections)
-    if extra:
-        data["quantities"].update(extra)
-        data["report"]["vibration"] = list(data["report"]["vibration"]) + list(extra)
-    if report is not None:
-        data["report"]["vibration"] = report
-    values = linkcli.loads(yaml.safe_dump(data, sort_keys=False)).solve().values
-    return {name: float(np.asarray(v)) for name, v in values.items()}
+    """Values of the file ``key`` (see ``vibration_cases.solve_file``)."""
+    return solve_file(path_of(key), extra, params, report, **sections)
 
 
 def close(got, expected, rtol=RTOL, atol=0.0):

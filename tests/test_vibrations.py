@@ -420,7 +420,6 @@ def test_forced_nonlinear_motion_settles_on_the_linear_amplitude():
 
 
 def test_explain_writes_the_energies_and_the_linearised_system(capsys):
-    root = os.path.dirname(os.path.abspath(__file__))
     import tempfile
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "d.yaml")

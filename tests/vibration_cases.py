@@ -158,3 +158,28 @@ quantities:
   T: {{transmissibility: y}}
 report: {{vibration: [w1, X, T]}}
 """
+
+
+def solve_file(path, extra=None, params=None, report=None, **sections):
+    """Values of the mechanism file ``path`` (keys left out); ``extra`` quantities are
+    added to its vibration report, ``params`` override its parameters, ``report``
+    replaces the vibration report, other sections replace the file's."""
+    import numpy as np
+    import yaml
+
+    import linkcli
+    with open(path) as handle:
+        data = yaml.safe_load(handle)
+    for contact in (data.get("rolling") or {}).values():     # YAML 1.1 reads 'on:' as True
+        if True in contact:
+            contact["on"] = contact.pop(True)
+    data.pop("keys", None)
+    data["params"].update(params or {})
+    data.update(sections)
+    if extra:
+        data["quantities"].update(extra)
+        data["report"]["vibration"] = list(data["report"]["vibration"]) + list(extra)
+    if report is not None:
+        data["report"]["vibration"] = report
+    values = linkcli.loads(yaml.safe_dump(data, sort_keys=False)).solve().values
+    return {name: float(np.asarray(v)) for name, v in values.items()}

@@ -6,7 +6,7 @@ a vibration problem, declared with coordinates, at its static equilibrium
 """
 from __future__ import annotations
 
-from linkcli.answers import quantities, vibration
+from linkcli.answers import quantities
 from linkcli.answers.quantities import Result
 from linkcli.errors import InputError
 
@@ -14,8 +14,9 @@ from linkcli.errors import InputError
 def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
              tol=None) -> Result:
     """Every name of ``names`` (default: the report's) in its display unit."""
-    if not vibration.is_vibration(mech):
+    if mech.elements is None:       # a file with a driver: no vibration modules to import
         return quantities.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
+    from linkcli.answers import vibration
     if q is not None or qdot is not None or qddot is not None or method != "closed":
         raise InputError("a vibration problem is solved at its static equilibrium: it takes no "
                          "driver values, rates or method", file=mech.file,

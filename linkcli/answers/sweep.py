@@ -28,7 +28,6 @@ changing; an exact toggle at the first or the last sample.
 from __future__ import annotations
 
 import math
-import os
 import tempfile
 from dataclasses import dataclass, field
 

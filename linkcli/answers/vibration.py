@@ -75,10 +75,6 @@ def analyse(mech) -> Analysis:
     return Analysis(mech, vib.linearise(lag))
 
 
-def is_vibration(mech) -> bool:
-    return mech.elements is not None
-
-
 def evaluate(mech, names, result):
     """Fill ``result`` (values, units) with ``names`` of a vibration problem."""
     for name in names:

@@ -12,7 +12,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.forces import motion as dyn_mod
 from linkcli.errors import Caution, SingularError, SolveError, StructureError
 from linkcli.kinematics.closed_form import where_text
 from linkcli.forces.friction import coefficients, friction_force, normal_factors, sliding_signs

@@ -14,9 +14,8 @@ is given; a cord must be taut and tangent in the figure.
 from __future__ import annotations
 
 import cmath
-import math
 
-from linkcli.model.mechanism import FRAME, Rolling
+from linkcli.model.mechanism import Rolling
 
 SIDES = {"left": 1, "right": -1}
 #: relative tolerance of the figure checks (the figure is approximate)

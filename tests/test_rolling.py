@@ -74,6 +74,24 @@ report: {position: [th]}
 """
 
 
+# a belt strand from a pulley on a vertical carriage (centre C2, y = h) down to a driven
+# drum (centre C1 fixed, angle a): open belt, both tangent points on the strand's left
+BELT = """
+title: belt from a driven drum to a pulley on a carriage
+units: {length: mm, angle: deg}
+frame: {C1: [0, 0]}
+points: {D1: [40, 0], C2: [-40, 500], D2: [-40, 580]}
+links: {drum: {points: [C1, D1], length: 40}, pulley: {points: [C2, D2], length: 80}}
+sliders: {carriage: {point: C2, guide: {x: -40}}}
+cords:
+  belt: {pulley: pulley, radius: 80, along: -y, side: left,
+         to: {disc: drum, radius: 40, side: left}}
+coordinates: {a: {angle: [C1, D1]}, h: {y: C2}}
+quantities: {th: {angle: [C2, D2]}}
+report: {position: [th]}
+"""
+
+
 def _marker_rates(text, q_values):
     """(positions, velocities, accelerations) of the marker D and the centre C."""
     mech = linkcli.loads(text)
@@ -151,6 +169,67 @@ def test_cord_unwinds_the_pulley():
     theta = np.unwrap(np.angle(d - c))
     y = np.real(kin.pos["P"] * -1j)
     assert np.allclose(theta - theta[0], (y - y[0]) / 0.06, atol=1e-12)
+
+
+def _belt_state(rates, accels):
+    mech = linkcli.loads(BELT)
+    solver = mech.solver()
+    q = (np.radians(np.linspace(-60, 200, 9)), np.linspace(0.3, 0.7, 9))
+    kin = solver.positions(q)
+    solver.velocities(kin, tuple(np.full(9, r) for r in rates))
+    solver.accelerations(kin, tuple(np.full(9, a) for a in accels))
+    return solver, q, kin
+
+
+def _spin(kin, centre, marker, rates=True):
+    pos, vel, acc = kin.pos, kin.vel, kin.acc
+    z = pos[marker] - pos[centre]
+    w = ((vel.get(marker, 0) - vel.get(centre, 0)) / z).imag
+    if not rates:
+        return w
+    return w, ((acc.get(marker, 0) - acc.get(centre, 0)) / z - w * w).imag
+
+
+def test_belt_strand_runs_at_one_speed_on_both_discs():
+    """The strand's material speed along u = -y at the drum's tangent point (C1 + 40) and at
+    the pulley's (C2 + 80): v_C . u - side r omega on each, equal for any rates."""
+    for rates in ((2.0, 0.0), (0.0, 0.5), (-3.0, 0.25)):
+        _, _, kin = _belt_state(rates, (0.0, 0.0))
+        w1, w2 = _spin(kin, "C1", "D1", False), _spin(kin, "C2", "D2", False)
+        u = -1j
+        s1 = (np.conj(u) * kin.vel.get("C1", 0)).real - 0.04 * w1
+        s2 = (np.conj(u) * kin.vel["C2"]).real - 0.08 * w2
+        assert np.max(np.abs(s1 - s2)) < 1e-12
+        if rates[1] == 0:
+            assert np.allclose(w2, w1 * 0.04 / 0.08, rtol=1e-12)   # the open belt's ratio
+
+
+def test_belt_rates_match_differences_of_positions():
+    rates, accels = (1.5, -0.2), (0.0, 0.0)
+    solver, (a, h), kin = _belt_state(rates, accels)
+    step = 1e-5
+    plus = solver.positions((a + step * rates[0], h + step * rates[1])).pos
+    minus = solver.positions((a - step * rates[0], h - step * rates[1])).pos
+    for p in ("C2", "D2"):
+        fd_v = (plus[p] - minus[p]) / (2 * step)
+        fd_a = (plus[p] - 2 * kin.pos[p] + minus[p]) / step ** 2
+        assert np.max(np.abs(kin.vel[p] - fd_v)) < 1e-8, p
+        assert np.max(np.abs(kin.acc[p] - fd_a)) < 1e-4, p
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ("side: left}}", "side: right}}", "the cord is not tangent in the figure: disc drum"),
+    ("along: -y", "along: y", "the cord is not taut in the figure: disc drum"),
+    ("to: {disc: drum,", "to: {disc: pulley,", "a belt cannot run from a pulley to itself"),
+    ("to: {disc: drum,", "to: {disc: wheel,", "undefined link 'wheel'"),
+])
+def test_bad_belts_are_located(tmp_path, capsys, old, new, message):
+    assert old in BELT
+    path = tmp_path / "belt.yaml"
+    path.write_text(BELT.replace(old, new))
+    assert main(["solve", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert message in err and "key 'cords.belt.to" in err, err
 
 
 def test_gruebler_counts_the_rolling_contact(capsys):

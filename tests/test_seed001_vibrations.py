@@ -434,3 +434,78 @@ def test_sep18_seeds_final_characteristic_equation_disagrees():
     assert w == pytest.approx([4.429447, 13.023824], rel=1e-6)    # seed001.md
     for n in (1, 2):
         assert not close(v[f"w{n}"], w[n - 1], rtol=1e-3)
+
+
+# --- 4 September 2001, Es. 2: two discs on a wire, imposed hinge motion, mass on a spring --
+SEP04 = dict(m=5.0, K=1.0e4, M=5.0, Y=0.005, W=30.0)
+SEP04_NAMES = {"m": {(0, 0): "m11", (0, 1): "m13", (1, 1): "m33"},
+               "k": {(0, 0): "k11", (0, 1): "k13", (1, 1): "k33"}}
+
+
+def sep04_matrices(m, K, M, **_):
+    """The seed's M and K (coordinates [x1, x3], both down): correct.  The file's y1 = -x1
+    and y3 = -x3 flip both coordinates, which leaves M and K as they are."""
+    return np.array([[3.5 * m, 0.0], [0.0, M]]), np.array([[5 * K, 2 * K], [2 * K, K]])
+
+
+def sep04_forcing(m, K, Y, W, **_):
+    """The corrected forcing of x2 = Y cos(Omega t): -(M_x,x2 x2'' + K_x,x2 x2) with
+    M_x1,x2 = m, K_x1,x2 = 4K, K_x3,x2 = 2K (from the seed's T and V)."""
+    return np.array([(m * W ** 2 - 4 * K) * Y, -2 * K * Y])
+
+
+def sep04_values(M):
+    if M == SEP04["M"]:
+        return values("09-04")
+    text = open(path_of("09-04")).read()
+    assert "  M: 5 " in text
+    return solve_text(text.replace("  M: 5 ", f"  M: {M:g} "))
+
+
+@pytest.mark.parametrize("M", [5.0, 10.0])
+def test_sep04_matrices_frequencies_and_modes(M):
+    p = dict(SEP04, M=M)
+    v = sep04_values(M)
+    Mm, Kk = sep04_matrices(**p)
+    assert_matrix(v, SEP04_NAMES["m"], Mm, "M")
+    assert_matrix(v, SEP04_NAMES["k"], Kk, "K")
+    w, u = modes(Mm, Kk)
+    for n in (1, 2):
+        assert_close(v[f"w{n}"], w[n - 1], what=f"w{n}")
+        assert_close(v[f"f{n}"], w[n - 1] / (2 * math.pi), what=f"f{n}")
+        assert_close(v[f"u{n}"], u[1, n - 1], what=f"u{n}")
+    if M == p["m"]:
+        # the seed's roots: omega^2 = (17 -+ sqrt 233)/14 K/m = 0.124, 2.30 K/m
+        exact = (17 - np.array([1.0, -1.0]) * math.sqrt(233)) / 14 * p["K"] / p["m"]
+        assert np.allclose(w ** 2, exact, rtol=1e-12)
+        assert exact / (p["K"] / p["m"]) == pytest.approx([0.124, 2.30], abs=5e-3)
+        assert w == pytest.approx([15.746485, 67.891024], rel=1e-7)     # seed001.md
+
+
+@pytest.mark.parametrize("M", [5.0, 10.0])
+def test_sep04_response_to_the_imposed_hinge_motion(M):
+    """(K - Omega^2 M) x = f with the corrected forcing; the file's y = -x."""
+    p = dict(SEP04, M=M)
+    v = sep04_values(M)
+    Mm, Kk = sep04_matrices(**p)
+    x1, x3 = np.linalg.solve(Kk - p["W"] ** 2 * Mm, sep04_forcing(**p))
+    assert_close(v["Y1"], abs(x1), what="disc 1 (m)")
+    assert_phase_of_signed(v["ph1"], -x1)
+    assert_close(v["Y3"], abs(x3), what="mass (m)")
+    assert_phase_of_signed(v["ph3"], -x3)
+    if M == 5.0:
+        assert [x1, x3] == pytest.approx([-4.837566e-3, -5.906675e-4], rel=1e-6)
+    else:
+        assert [x1, x3] == pytest.approx([-4.982912e-3, -3.417635e-4], rel=1e-6)
+
+
+def test_sep04_seeds_printed_forcing_disagrees():
+    """The seed prints the forcing {(m Omega^2 + 4K), 2K} (l.3147-3149, unit amplitude): the
+    signs of 4K and 2K are wrong, and the response it gives is not the file's."""
+    p = SEP04
+    v = values("09-04")
+    Mm, Kk = sep04_matrices(**p)
+    seed = np.array([p["m"] * p["W"] ** 2 + 4 * p["K"], 2 * p["K"]]) * p["Y"]
+    x1, x3 = np.linalg.solve(Kk - p["W"] ** 2 * Mm, seed)
+    assert [x1, x3] == pytest.approx([3.668045e-3, 4.843473e-3], rel=1e-6)   # seed001.md
+    assert not close(v["Y3"], abs(x3), rtol=1e-2)

@@ -16,7 +16,7 @@ def explain(mech) -> str:
              f"  prismatic pairs P = {count.p}: " + (", ".join(
                  f"{name} ({b1}-{b2})" for name, b1, b2 in count.prismatics) or "none")] + (
                 [f"  higher pairs H = {count.h}: " + ", ".join(
-                    f"{n} ({mech.rolling[n].disc}, {'cord' if mech.rolling[n].kind == 'cord' else 'rolling'})"
+                    f"{n} ({mech.rolling[n].disc}, {'cord' if mech.rolling[n].kind in ('cord', 'belt') else 'rolling'})"
                     for n in count.higher)] if count.h else []) + [
              f"  {count.formula()}", "", "Decomposition and solving order"]
     if len(mech.coordinates) > 1 or mech.elements is not None:

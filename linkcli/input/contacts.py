@@ -6,6 +6,8 @@
       r3: {disc: planet, radius: 50, on: {disc: sun, radius: 150}}  # on another disc
     cords:
       c1: {pulley: drum, radius: 80, to: P, along: -y, side: left}  # a taut cord from drum to P
+      b1: {pulley: drum, radius: 80, along: x, side: right,         # a belt strand from drum
+           to: {disc: wheel, radius: 40, side: right}}              # to the disc wheel
 
 The disc (or pulley) is a link whose first point is its centre.  Whether a
 disc is inside or outside a circle is read from the figure unless ``inside``
@@ -119,27 +121,50 @@ class ContactsSection:
         return inside
 
     def cord_entry(self, name, value, path, units, bodies, figure) -> Rolling:
+        """A taut cord from a pulley to a point P (``to: P``), or a belt strand from the
+        pulley to another disc (``to: {disc: D, radius: r, side: left}``)."""
         self.name(name, path, what="cord")
         spec = self.mapping(value, path, {"pulley", "radius", "to", "along", "side"},
                             ("pulley", "radius", "to", "along"))
         disc, center = self.disc_body(spec["pulley"], path + ("pulley",), bodies)
         radius = self.positive(spec["radius"], path + ("radius",), units)
-        point = self.name(spec["to"], path + ("to",), set(figure))
         u = self.direction(spec["along"], path + ("along",), units)
         side = self.side(spec, path)
         tangent = figure[center] + side * radius * 1j * u
-        z = figure[point] - tangent
+        if isinstance(spec["to"], dict):
+            return self.belt_entry(name, spec["to"], path + ("to",), units, bodies, figure,
+                                   (disc, center, radius, u, side, tangent))
+        point = self.name(spec["to"], path + ("to",), set(figure))
+        self.taut(path + ("to",), figure[point] - tangent, u, radius, side, point)
+        return Rolling(name, disc, center, radius, "cord", u, side, point=point)
+
+    def belt_entry(self, name, to, path, units, bodies, figure, pulley) -> Rolling:
+        """The strand runs from the pulley's tangent point to the other disc's, whose
+        tangent point is D + side_D r_D i u (on its ``side`` looking along the strand)."""
+        disc, center, radius, u, side, tangent = pulley
+        to = self.mapping(to, path, {"disc", "radius", "side"}, ("disc", "radius"))
+        other, track = self.disc_body(to["disc"], path + ("disc",), bodies)
+        if other == disc:
+            raise self.error(path + ("disc",), "a belt cannot run from a pulley to itself")
+        r_other = self.positive(to["radius"], path + ("radius",), units)
+        other_side = self.side(to, path)
+        far = figure[track] + other_side * r_other * 1j * u
+        self.taut(path, far - tangent, u, max(radius, r_other), side, f"disc {other}")
+        return Rolling(name, disc, center, radius, "belt", u, side, track=track,
+                       track_radius=r_other, other=other, other_side=other_side)
+
+    def taut(self, path, z, u, radius, side, what):
+        """The strand z from the pulley's tangent point runs ahead along u, on the tangent."""
         run = (z * u.conjugate()).real
         size = max(abs(z), radius)
         if run <= 0:
-            raise self.error(path + ("to",), f"the cord is not taut in the figure: {point} is not "
+            raise self.error(path, f"the cord is not taut in the figure: {what} is not "
                              f"ahead of the pulley along the cord's direction",
                              hint="'along' is the direction from the pulley to the point")
         if abs((z * u.conjugate()).imag) > FIGURE_TOL * size:
             unit, f = self.length_unit
-            raise self.error(path + ("to",), f"the cord is not tangent in the figure: {point} is "
+            raise self.error(path, f"the cord is not tangent in the figure: {what} is "
                              f"{abs((z * u.conjugate()).imag) / f:.4g} {unit} off the tangent line "
                              "from the "
                              f"{'left' if side > 0 else 'right'} of the pulley",
                              hint="check 'side', 'along' and the radius")
-        return Rolling(name, disc, center, radius, "cord", u, side, point=point)

@@ -537,6 +537,11 @@ def rolling_terms(r, mech):
         return [(Along(r.direction, r.center), r.side / r.radius)]
     if r.kind == "cord":
         return [(Along(r.direction, r.center, r.point), r.side / r.radius)]
+    if r.kind == "belt":
+        other = mech.bodies[r.other]
+        return [(Along(r.direction, r.center, r.track), r.side / r.radius),
+                (AngleOf(other.points[0], other.points[1]),
+                 r.side * r.other_side * r.track_radius / r.radius)]
     ratio = -(r.track_radius - r.radius) / r.radius if r.inside else \
         (r.track_radius + r.radius) / r.radius
     terms = [(AngleOf(r.track, r.center), ratio)]

@@ -273,7 +273,7 @@ class _Decomposer:
             if body.name in self.known_bodies or r.center not in self.known:
                 continue
             if r.kind == "cord" and r.point not in self.known or \
-                    r.kind == "disc" and r.other not in self.known_bodies:
+                    r.kind in ("disc", "belt") and r.other not in self.known_bodies:
                 continue
             marker = body.points[1]
             if marker in self.known:
@@ -283,7 +283,8 @@ class _Decomposer:
             what = {"line": "rolling on a fixed line", "cord": f"the cord to {r.point}",
                     "circle": f"rolling {'inside' if r.inside else 'outside'} the circle about "
                               f"{r.track}",
-                    "disc": f"rolling {'inside' if r.inside else 'outside'} disc {r.other}"}
+                    "disc": f"rolling {'inside' if r.inside else 'outside'} disc {r.other}",
+                    "belt": f"the belt from disc {r.other}"}
             self.groups.append(Group("roll", marker, (r,), (r.disc,),
                                      note=f"{r.name} ({what[r.kind]})"))
             self.known.add(marker)

@@ -64,16 +64,23 @@ class Rolling:
     The disc is the link ``disc`` whose first point ``center`` is its centre;
     ``radius`` its rolling radius.  What it rolls on (``kind``):
 
-    - 'line': a fixed line of unit direction ``direction``, the centre on its
-      ``side`` (+1 left, -1 right): omega = -side (v_C . u) / r;
+    - 'line': a fixed line of unit direction ``direction``; ``side`` is -1 when the
+      centre is on the line's left (looking along u), +1 on its right:
+      omega = side (v_C . u) / r;
     - 'cord': a straight cord leaving the pulley along ``direction`` towards
       ``point`` P, from its ``side``: the cord is a line moving with P,
-      omega = -side ((v_C - v_P) . u) / r;
+      omega = side ((v_C - v_P) . u) / r;
     - 'circle': a fixed circle of centre ``track`` and radius ``track_radius``,
       ``inside`` or outside: omega = -(R - r)/r psi' inside, (R + r)/r psi' outside,
       psi the angle of C about the centre;
     - 'disc': the disc ``other`` (its first point its centre) of radius
-      ``track_radius``: as the circle, plus -/+ (R / r) omega_other (outside/inside).
+      ``track_radius``: as the circle, plus -/+ (R / r) omega_other (outside/inside);
+    - 'belt': a straight strand of a taut cord or belt leaving the pulley along
+      ``direction`` towards the disc ``other`` (centre ``track``, radius
+      ``track_radius``), which it meets on its ``other_side`` (+1 left, -1 right, looking
+      along the strand): the strand's speed along u at the other disc is
+      v_D . u - other_side r_D omega_D, so
+      omega = side ((v_C - v_D) . u + other_side r_D omega_D) / r.
 
     Each contact takes one degree of freedom (a higher pair in Grübler's count).
     """
@@ -90,6 +97,7 @@ class Rolling:
     track_radius: float = 0.0
     inside: bool = False
     other: str | None = None
+    other_side: int = 1
 
 
 @dataclass(frozen=True)

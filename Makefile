@@ -5,7 +5,7 @@ VENV   ?= .venv
 BIN     = $(VENV)/bin
 EXAMPLE ?= mechanisms/padova-2020-02.yaml
 
-.PHONY: run test check bench install clean
+.PHONY: run test check bench bench-full install clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -36,10 +36,16 @@ test: $(VENV)/.installed-test
 check: $(VENV)/.installed
 	$(BIN)/linkcli check mechanisms/
 
-## bench: speed against accuracy (table and chart in benchmarks/out/)
+## bench: speed against hand-written NumPy at 360 ... 10^7 positions, with accuracy and
+## peak memory (tables and charts in benchmarks/out/; a few minutes)
 bench: $(VENV)/.installed-test
-	$(BIN)/python benchmarks/speed_accuracy.py
+	$(BIN)/python benchmarks/speed.py
 	$(BIN)/python benchmarks/vibration.py
+	$(BIN)/python benchmarks/memory.py --quick
+
+## bench-full: also every solver against a 50-digit reference and sweeps of 10^7 positions
+bench-full: bench
+	$(BIN)/python benchmarks/speed_accuracy.py
 	$(BIN)/python benchmarks/memory.py
 
 clean:

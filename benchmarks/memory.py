@@ -1,4 +1,5 @@
-"""Peak memory of `linkcli sweep` against the number of positions (run by `make bench`).
+"""Peak memory of `linkcli sweep` against the number of positions (`make bench`: to 10^6;
+`make bench-full`: to 10^7).
 
 For a four-bar (mechanisms/fourbar-inverse-dynamics.yaml) and a six-bar
 (mechanisms/padova-2020-01.yaml), each over a full turn, it runs

@@ -1,4 +1,4 @@
-"""Speed against accuracy of linkcli's solvers (run by `make bench`).
+"""Speed against accuracy of every solver, against a 50-digit reference (`make bench-full`).
 
 For three mechanisms - the seed-004 four-bar, the seed-000 crank-slider and the
 six-bar of mechanisms/padova-2020-07.yaml (written here in SI units) - and
@@ -258,8 +258,8 @@ def finite_difference_values(case, q, h):
 def scipy_values(case, q, how):
     """Positions per driver value by scipy (warm-started), rates by central differences."""
     from scipy import optimize
-    system = Constraints(case.mech)
-    x = solver_for(case.mech, "newton").x0.copy()          # the file's configuration, to start
+    system = Constraints(case.mech.model)
+    x = case.mech.solver("newton").x0.copy()               # the file's configuration, to start
     h = 1e-5 * case.q_scale
 
     def solve_one(qv, start):
@@ -286,7 +286,7 @@ def scipy_values(case, q, how):
         kin.acc[name] = d2 * case.qd ** 2 + d1 * case.qdd
     kin.qd = np.full(q.shape, case.qd)
     kin.qdd = np.full(q.shape, case.qdd)
-    return elapsed, collect(case.mech, case.mech.solver(), kin, case.names).values
+    return elapsed, collect(case.mech.model, case.mech.solver(), kin, case.names).values
 
 
 PEERS = ("pylinkage", "pyslvs", "python_solvespace", "mechanism")

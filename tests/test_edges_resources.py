@@ -173,12 +173,12 @@ def test_singular_rows_and_ranges_across_block_boundaries(parallelogram):
 
 
 def test_out_of_memory_is_a_clean_error(fourbar, capsys, monkeypatch):
-    from linkcli.answers import sweep as sw
+    from linkcli.answers import quantities
 
     def exhausted(*args, **kwargs):
         raise MemoryError()
 
-    monkeypatch.setattr(sw, "collect", exhausted)
+    monkeypatch.setattr(quantities.Plan, "collect", exhausted)
     code, out, err = _run(capsys, "sweep", fourbar, "--from", "0", "--to", "360",
                           "--steps", "100")
     assert code == 3 and out == ""

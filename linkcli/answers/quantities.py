@@ -15,6 +15,7 @@ translates) it is a located SolveError, never NaN.
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -120,63 +121,206 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
              tol=None) -> Result:
     """Solve ``mech`` at driver value(s) ``q`` (display units) and evaluate ``names``."""
     require_driver(mech, "solving at driver values")
-    names = list(names) if names is not None else report_names(mech)
-    for name in names:
-        base, order = split_rate(name)
-        quantity = mech.quantities.get(base)
-        if quantity is not None and quantity.kind == "load" and order:
-            raise InputError(f"'{name}': a load has no rates", file=mech.file, key="names",
-                             hint=f"ask for the load itself, '{base}'")
-    solver = solver_for(mech, method, tol)
-    base = "angle" if mech.driver.kind == "angle" else "length"
-    units = mech.units
-    q_si = mech.driver.value if q is None else np.asarray(q, float) * units.display(base, 0)[1]
-    qd_si = mech.driver.rate if qdot is None else np.asarray(qdot, float) * units.display(base, 1)[1]
-    qdd_si = mech.driver.accel if qddot is None else \
-        np.asarray(qddot, float) * units.display(base, 2)[1]
-    order = needed_orders(mech, names)
-    kin = solver.positions(q_si)
-    solver.check(kin, velocities=False)
-    if order >= 1:
-        solver.velocities(kin, qd_si)
-        solver.check(kin, velocities=True)
-    if order >= 2:
-        solver.accelerations(kin, qdd_si)
-    result = collect(mech, solver, kin, names)
-    if q is None:       # the file's own position: what the figure check says of it
-        from linkcli.answers.validate import figure_cautions
-        result.cautions = figure_cautions(mech) if method == "closed" else []
-    return result
+    return plan_for(mech, names, method, tol).evaluate(mech, q, qdot, qddot)
 
 
 def collect(mech, solver, kin, names) -> Result:
     """Evaluate ``names`` (display units) on kinematics ``kin`` solved as far as they need."""
-    units = mech.units
-    result = Result(mech, kinematics=kin)
+    return plan_for(mech, names).collect(mech, solver, kin)
+
+
+# --- the evaluation plan --------------------------------------------------------------------
+_PLANS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def plan_for(mech, names=None, method="closed", tol=None) -> "Plan":
+    """The :class:`Plan` of ``names`` (default: the report's) on ``mech``, built at the first
+    call and kept, keyed by the mechanism object (which stays plain data), like its solvers."""
+    key = (None if names is None else tuple(names), method, tol)
+    plans = _PLANS.setdefault(mech, {})
+    plan = plans.get(key)
+    if plan is None:
+        plan = plans[key] = Plan(mech, report_names(mech) if names is None else list(names),
+                                 method, tol)
+    return plan
+
+
+class Plan:
+    """How a list of names is evaluated on one mechanism, worked out once.
+
+    Building it parses the names (base quantity, order of rate), refuses the ones that are
+    not defined (rates of loads, rates a quantity has not), finds the order of kinematics
+    they need and each one's display unit and SI factor, and picks each one's evaluation:
+    angles, lengths, coordinates and the driver by a few array operations written straight
+    into one preallocated (names x positions) array; the other kinds by :func:`_value`.
+    Evaluating then solves and runs that list; the values are checked to be finite once for
+    the whole array.  The plan holds no reference to the mechanism (it is passed to each
+    call), so the mechanism and its plans are freed together.
+    """
+
+    def __init__(self, mech, names, method="closed", tol=None):
+        self.method, self.tol = method, tol
+        self.names = list(dict.fromkeys(names))
+        self._order = None
+        self.wants_loads = False
+        for name in self.names:
+            base, order = split_rate(name)
+            quantity = mech.quantities.get(base)
+            if quantity is not None and quantity.kind == "load":
+                self.wants_loads = True
+                if order:
+                    raise InputError(f"'{name}': a load has no rates", file=mech.file,
+                                     key="names", hint=f"ask for the load itself, '{base}'")
+        driver = "angle" if mech.driver is not None and mech.driver.kind == "angle" \
+            else "length"
+        self.q_factors = [mech.units.display(driver, i)[1] for i in range(3)]
+        self.steps = [_step(mech, name) for name in self.names]
+        self.generic = any(fn is None for fn, _ in self.steps)
+        l_unit, l_factor = mech.units.display("length", 0)
+        self.points = [(p, l_unit, l_factor) for p in mech.report.get("points", [])]
+
+    def order(self, mech) -> int:
+        """The highest order of rates the names need (checked at the first call)."""
+        if self._order is None:
+            self._order = needed_orders(mech, self.names)
+        return self._order
+
+    def evaluate(self, mech, q=None, qdot=None, qddot=None) -> Result:
+        """Solve at driver value(s) ``q`` (display units; default the file's) as far as the
+        names need, refusing unassembled and singular positions, and evaluate them."""
+        solver = solver_for(mech, self.method, self.tol)
+        order = self.order(mech)
+        driver = mech.driver
+        f0, f1, f2 = self.q_factors
+        kin = solver.positions(driver.value if q is None else np.asarray(q, float) * f0)
+        solver.check(kin, velocities=False)
+        if order >= 1:
+            solver.velocities(kin, driver.rate if qdot is None else np.asarray(qdot, float) * f1)
+            solver.check(kin, velocities=True)
+        if order >= 2:
+            solver.accelerations(kin, driver.accel if qddot is None else
+                                 np.asarray(qddot, float) * f2)
+        result = self.collect(mech, solver, kin)
+        if q is None:       # the file's own position: what the figure check says of it
+            from linkcli.answers.validate import figure_cautions
+            result.cautions = figure_cautions(mech) if self.method == "closed" else []
+        return result
+
+    def collect(self, mech, solver, kin) -> Result:
+        """Evaluate the names (display units) on ``kin`` solved as far as they need."""
+        result = Result(mech, kinematics=kin)
+        shape = np.shape(kin.q)
+        if len(kin.coords) > 1 and kin.shape != shape:     # coordinates of several shapes
+            return _collect_each(mech, solver, kin, self.names, result)
+        loads = _loads(mech, solver, kin, self.names) if self.wants_loads else {}
+        context = Context(mech, solver, kin) if self.generic else None
+        table = np.empty((len(self.names),) + shape)
+        for i, (name, (fn, unit)) in enumerate(zip(self.names, self.steps)):
+            row = table[i, ...]
+            if fn is None:
+                value, unit = _value(mech, name, kin, loads, context)
+                row[...] = value
+            else:
+                fn(kin, row)
+            result.units[name] = unit
+        if not np.isfinite(table).all():
+            _require_finite(mech, dict(zip(self.names, table)))
+        result.values = dict(zip(self.names, table))
+        for p, l_unit, l_factor in self.points:
+            z = kin.pos[p]
+            result.points[p] = (np.real(z) / l_factor + 0 * kin.q,
+                                np.imag(z) / l_factor + 0 * kin.q)
+            result.units[p] = l_unit
+        if self.points:
+            _require_finite(mech, {p: xy for p, xy in result.points.items()})
+        return result
+
+
+def _collect_each(mech, solver, kin, names, result):
+    """Every name evaluated on its own (coordinates whose arrays differ in shape)."""
     loads = _loads(mech, solver, kin, names)
     context = Context(mech, solver, kin)
     for name in names:
-        value, unit = _value(mech, name, kin, loads, context)
-        result.values[name] = value
-        result.units[name] = unit
-    l_unit, l_factor = units.display("length", 0)
+        result.values[name], result.units[name] = _value(mech, name, kin, loads, context)
+    l_unit, l_factor = mech.units.display("length", 0)
     for p in mech.report.get("points", []):
         z = kin.pos[p]
         result.points[p] = (np.real(z) / l_factor + 0 * kin.q, np.imag(z) / l_factor + 0 * kin.q)
         result.units[p] = l_unit
-    _require_finite(mech, result)
+    _require_finite(mech, {**result.values, **result.points})
     return result
 
 
-def _require_finite(mech, result):
+def _require_finite(mech, named):
     """Refuse to return NaN or infinity: overflowing data or coincident points."""
-    named = list(result.values.items()) + [(p, xy) for p, xy in result.points.items()]
-    for name, value in named:
+    for name, value in named.items():
         if not np.all(np.isfinite(np.asarray(value, dtype=float))):
             raise SolveError(f"'{name}' is not a finite number: the data overflow floating-point "
                              "arithmetic or the points that define it coincide",
                              file=mech.file, hint="check the magnitudes of lengths, rates and "
                              "loads, and the driver value")
+
+
+def _step(mech, name):
+    """(kernel, display unit) of ``name``: ``kernel(kin, out)`` writes the value in display
+    units into ``out`` (an array of the driver values' shape); (None, None): the value and
+    its unit come from :func:`_value` (the driver, textbook kinds, loads)."""
+    base_name, order = split_rate(name)
+    quantity = mech.quantities.get(base_name)
+    if quantity is None or quantity.kind not in ("angle", "length", "x", "y") \
+            or quantity.kind in TEXTBOOK:
+        return None, None
+    base = "angle" if quantity.kind == "angle" else "length"
+    unit, factor = mech.units.display(base, order)
+    if quantity.unit:
+        unit, factor = _override(quantity.unit, base, order)
+    a, b = quantity.a, quantity.b
+    if quantity.kind in ("x", "y"):
+        real = quantity.kind == "x"
+
+        def coordinate(kin, out):
+            z = (kin.pos, kin.vel, kin.acc)[order].get(a, 0j)
+            _put(np.real(z) if real else np.imag(z), factor, kin, out)
+        return coordinate, unit
+    if base == "angle" and order == 0:
+        return _angle_kernel(a, b, factor, quantity.signed), unit
+
+    signed = quantity.signed and order == 0
+
+    def vector(kin, out):
+        value = _vector(quantity, kin, order)[0]
+        _put(signed_angle(value) if signed else value, factor, kin, out)
+    return vector, unit
+
+
+def _angle_kernel(a, b, factor, signed):
+    """The angle of P_b - P_a in [0, 2 pi) (``signed``: in (-pi, pi]) written into ``out``:
+    ``wrap_angle(np.angle(z), principal=True)`` done in place.  An angle <= 0 gains 2 pi;
+    one within 1e-12 rad of 2 pi (+-0 included) is 0."""
+    def angle(kin, out):
+        z = _rates(kin, a, b, rate=False)[0]
+        if getattr(z, "shape", ()) != out.shape:
+            value = wrap_angle(np.angle(z), principal=True)
+            _put(signed_angle(value) if signed else value, factor, kin, out)
+            return
+        np.arctan2(z.imag, z.real, out=out)
+        np.add(out, TWO_PI, out=out, where=out <= 0)
+        np.copyto(out, 0.0, where=out > TWO_PI - 1e-12)
+        if signed:
+            np.subtract(out, TWO_PI, out=out, where=out > math.pi)
+        if factor != 1:
+            np.divide(out, factor, out=out)
+    return angle
+
+
+def _put(value, factor, kin, out):
+    """``value`` (SI) in display units into ``out``; -0.0 becomes 0.0 as in :func:`_value`."""
+    if getattr(value, "shape", ()) != out.shape:
+        out[...] = value / factor + 0 * kin.q
+    elif factor != 1:
+        np.divide(value, factor, out=out)
+    else:
+        np.add(value, 0.0, out=out)
 
 
 def _loads(mech, solver, kin, names):
@@ -547,3 +691,16 @@ def _ratio(quantity, context):
         unit, factor = _override(target.unit, base, 0)
     q_unit, q_factor = units.display(mech.driver.base, 0)
     return np.asarray(value * q_factor / factor + 0 * context.kin.q) + 0.0, f"{unit}/{q_unit}"
+
+
+def angle_period(mech, name: str, unit: str) -> float | None:
+    """The turn (360 in deg, 2 pi in rad) of a quantity that is an angle, compared and
+    plotted modulo a turn: an angle, a rotation, the angle between two vectors or an angle
+    driver (not their rates); None for any other quantity."""
+    base, order = split_rate(name)
+    quantity = mech.quantities[base]
+    is_angle = quantity.angular or (quantity.kind == "q" and mech.driver is not None
+                                    and mech.driver.kind == "angle")
+    if order or not is_angle:
+        return None
+    return 360.0 if unit == "deg" else 2 * math.pi

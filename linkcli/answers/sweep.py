@@ -37,7 +37,7 @@ from linkcli.errors import NoWorkError, AssemblyError, InputError, SolveError
 from linkcli.kinematics.closed_form import SINGULAR, Kinematics
 from linkcli.kinematics.topology import Dist, Line
 from linkcli.model.mechanism import split_rate
-from linkcli.answers.quantities import collect, needed_orders, report_names, require_driver
+from linkcli.answers.quantities import needed_orders, plan_for, report_names, require_driver
 from linkcli.kinematics.solvers import solver_for
 
 MAX_POSITIONS = 10 ** 7
@@ -241,6 +241,7 @@ class Sweeper:
         self.qd = mech.driver.rate if qdot is None else qdot * units.display(base, 1)[1]
         self.qdd = mech.driver.accel if qddot is None else qddot * units.display(base, 2)[1]
         self.order = needed_orders(mech, self.names) if self.names else 0
+        self.evaluation = plan_for(mech, self.names)     # names parsed once, for every block
         self.units: dict = {}
         self.solved_rows = 0
         self._issues: list = []          # [Issue] (assembly, singular: runs joined)
@@ -349,7 +350,7 @@ class Sweeper:
         if self.order >= 2:
             self.solver.accelerations(sub, self.qdd)
         try:
-            result = collect(self.mech, self.solver, sub, self.names)
+            result = self.evaluation.collect(self.mech, self.solver, sub)
         except NoWorkError as exc:      # the unknown load at its dead centre: rows left out
             dead = np.broadcast_to(np.asarray(exc.rows, bool), sub.q.shape)
             alive = np.nonzero(keep)[0]
@@ -361,7 +362,7 @@ class Sweeper:
             if dead.all():
                 return Block(q, good, {n: np.zeros(0) for n in self.names})
             sub = _subset(sub, ~dead)
-            result = collect(self.mech, self.solver, sub, self.names)
+            result = self.evaluation.collect(self.mech, self.solver, sub)
         self.units.update(result.units)
         self.solved_rows += int(np.count_nonzero(good))
         values = {n: np.broadcast_to(result.values[n], sub.q.shape) for n in self.names}
@@ -371,7 +372,7 @@ class Sweeper:
         """The units of the names when every assembled row of a block is left out (for a
         header without rows): from the empty selection, as a one-block sweep did."""
         try:
-            self.units.update(collect(self.mech, self.solver, sub, self.names).units)
+            self.units.update(self.evaluation.collect(self.mech, self.solver, sub).units)
         except Exception:       # noqa: BLE001 - units only; the header shows [] then
             pass
 

@@ -1,0 +1,346 @@
+"""linkcli against hand-written NumPy, at every size (run by `make bench`).
+
+For three mechanisms - the seed-004 four-bar, the seed-000 crank-slider and the
+six-bar of mechanisms/padova-2020-07.yaml (``speed_accuracy.py`` writes them in SI
+units) - it times positions, velocities and accelerations of every reported quantity
+at N = 360, 10^4, 10^6 and 10^7 driver positions:
+
+- linkcli: ``Linkage.solve(q, names=...)`` on the whole array (10^7: in blocks of
+  16384 positions, the block size of ``linkcli sweep``, in a fresh process whose peak
+  resident memory is read);
+- hand-written NumPy of the same closed form (the same blocks at 10^7), the speed to
+  compare with;
+- peers (pylinkage) when importable.
+
+Next to the speed, the accuracy on the 10^4 grid: the closure residual of linkcli's
+positions (every constraint of every group, relative to the square of the mechanism's
+size), the rates of each method against central finite differences of its own
+positions (five-point differences, step 1e-3 of the driver range, relative to the
+largest rate: the differences themselves are good to ~1e-8), and the largest difference between linkcli and the
+hand-written values (angles in rad, others relative).
+
+    python benchmarks/speed.py [--quick]
+
+--quick stops at N = 10^6.  Writes benchmarks/out/speed.md (the table, also printed)
+and benchmarks/out/speed.png (time per position against N).
+"""
+from __future__ import annotations
+
+import argparse
+import importlib
+import json
+import math
+import os
+import platform
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(HERE))
+sys.path.insert(0, HERE)
+
+import linkcli  # noqa: E402
+from speed_accuracy import CRANK_SLIDER, FOURBAR, SIXBAR, hand_fourbar  # noqa: E402
+
+OUT = os.path.join(HERE, "out")
+SIZES = (360, 10 ** 4, 10 ** 6, 10 ** 7)
+BLOCK = 16384           # positions per block at 10^7 (answers.sweep.BLOCK)
+ACCURACY_N = 10 ** 4
+PEERS = ("pylinkage",)
+
+
+# --- hand-written closed forms: values and their first and second time rates --------------
+def hand_crank_slider(q, qd, qdd):
+    """Centred crank-slider, OA = a, AB = b, B on y = 0 right of O:
+    a sin q + b sin beta = 0, xB = a cos q + b cos beta, differentiated twice."""
+    a, b = 1.0, math.sqrt(2.0)
+    sq, cq = np.sin(q), np.cos(q)
+    sb = -a / b * sq
+    cb = np.sqrt(1.0 - sb * sb)
+    beta = np.arctan2(sb, cb)
+    bd = -a * cq * qd / (b * cb)
+    bdd = (a * sq * qd * qd - a * cq * qdd + b * sb * bd * bd) / (b * cb)
+    xd = -a * sq * qd - b * sb * bd
+    xdd = -a * cq * qd * qd - a * sq * qdd - b * cb * bd * bd - b * sb * bdd
+    return {"beta": beta, "xB": a * cq + b * cb, "betadot": bd, "xBdot": xd,
+            "betaddot": bdd, "xBddot": xdd}
+
+
+def _solve2(g1, g2, r1, r2):
+    """X with Re(conj(g1) X) = r1, Re(conj(g2) X) = r2: X = i (r2 g1 - r1 g2) / cross."""
+    det = (g1.conjugate() * g2).imag
+    return 1j * (r2 * g1 - r1 * g2) / det
+
+
+def _angle_rates(z, zd, zdd):
+    """arg z and its rates: Im(z'/z), Im(z''/z - (z'/z)^2)."""
+    w = zd / z
+    return np.angle(z), w.imag, (zdd / z - w * w).imag
+
+
+def hand_sixbar(q, qd, qdd):
+    """Actuator AB = q, rocker BCD (BC = BD = 0.07, D a quarter turn from C), rod DE = 0.19,
+    E on y = 0.18 left of D: circle-circle for B, a rotation for D, circle-line for E."""
+    C, bc, de, ye = 0.18 + 0.04j, 0.07, 0.19, 0.18
+    L2 = abs(C) ** 2
+    t = (q * q - bc * bc + L2) / (2 * L2)
+    s = np.sqrt(q * q / L2 - t * t)
+    B = C * (t + 1j * s)
+    u, v = B, B - C                         # |u| = q, |v| = bc
+    Bd = _solve2(u, v, q * qd, 0.0)
+    Bdd = _solve2(u, v, q * qdd + qd * qd - np.abs(Bd) ** 2, -np.abs(Bd) ** 2)
+    turn = 1 - 1j * (0.07 / bc)             # D - B = i (0.07 / bc) (C - B)
+    D, Dd, Ddd = B + (1j * 0.07 / bc) * (C - B), Bd * turn, Bdd * turn
+    dy = ye - D.imag
+    dx = -np.sqrt(de * de - dy * dy)
+    E = (D.real + dx) + 1j * ye
+    xd = Dd.real + dy * Dd.imag / dx
+    xdd = Ddd.real - ((xd - Dd.real) ** 2 + Dd.imag ** 2 - dy * Ddd.imag) / dx
+    Ed, Edd = xd + 0j, xdd + 0j
+    out = {"xE": E.real, "xEdot": xd, "xEddot": xdd}
+    for name, (z, zd, zdd) in {"phi1": (B, Bd, Bdd), "phi2": (C - B, -Bd, -Bdd),
+                               "phi3": (D - B, Dd - Bd, Ddd - Bdd),
+                               "phi4": (E - D, Ed - Dd, Edd - Ddd)}.items():
+        out[name], out[name + "dot"], out[name + "ddot"] = _angle_rates(z, zd, zdd)
+    return out
+
+
+class Case:
+    def __init__(self, key, text, hand, lo, hi):
+        self.key, self.hand, self.lo, self.hi = key, hand, lo, hi
+        self.linkage = linkcli.loads(text, name=f"{key}.yaml")
+        self.mech = self.linkage.model
+        report = self.mech.report
+        self.base = report["position"]
+        self.names = [n for s in ("position", "velocity", "acceleration") for n in report[s]]
+        self.qd, self.qdd = self.mech.driver.rate, self.mech.driver.accel
+
+    def grid(self, n):
+        return self.lo + (self.hi - self.lo) * (np.arange(n) + 0.5) / n
+
+    def solve(self, q):
+        return self.linkage.solve(q, names=self.names).values
+
+    def by_hand(self, q):
+        return self.hand(q, self.qd, self.qdd)
+
+
+CASES = {"four-bar": (FOURBAR, hand_fourbar, 0.0, 2 * math.pi),
+         "crank-slider": (CRANK_SLIDER, hand_crank_slider, 0.0, 2 * math.pi),
+         "six-bar": (SIXBAR, hand_sixbar, 0.12, 0.20)}
+
+
+def case(key) -> Case:
+    text, hand, lo, hi = CASES[key]
+    return Case(key, text, hand, lo, hi)
+
+
+# --- timing ----------------------------------------------------------------------------
+def best_time(func, budget=1.0, most=200):
+    """The best of repeated runs, as many as fit ``budget`` seconds (at least 3)."""
+    best, spent, runs = math.inf, 0.0, 0
+    while runs < 3 or (spent < budget and runs < most):
+        start = time.perf_counter()
+        func()
+        took = time.perf_counter() - start
+        best, spent, runs = min(best, took), spent + took, runs + 1
+    return best
+
+
+def in_blocks(func, c, n):
+    """Solve ``n`` positions block by block (values dropped): seconds."""
+    start = time.perf_counter()
+    for lo in range(0, n, BLOCK):
+        q = c.lo + (c.hi - c.lo) * (np.arange(lo, min(n, lo + BLOCK)) + 0.5) / n
+        func(q)
+    return time.perf_counter() - start
+
+
+def high_water() -> float:
+    """Peak resident memory of this process (MB)."""
+    with open("/proc/self/status", encoding="ascii") as handle:
+        for line in handle:
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1]) / 1024.0
+    import resource
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def child(key, method, n):
+    """Run in a fresh process: one blocked solve of ``n`` positions, its time and peak RSS."""
+    c = case(key)
+    func = c.solve if method == "linkcli" else c.by_hand
+    func(c.grid(BLOCK))                     # warm: plans and solvers built
+    before = high_water()
+    seconds = in_blocks(func, c, n)
+    return {"seconds": seconds, "rss_MB": high_water(), "rss_before_MB": before}
+
+
+# --- accuracy --------------------------------------------------------------------------
+def _diff(a, b, angle):
+    d = np.asarray(a, float) - np.asarray(b, float)
+    return np.angle(np.exp(1j * d)) if angle else d
+
+
+def accuracy(c):
+    """(closure residual, linkcli rates vs FD, hand rates vs FD, linkcli vs hand)."""
+    from linkcli.kinematics.closed_form import residuals
+    q = c.grid(ACCURACY_N)
+    solver = c.linkage.solver()
+    kin = solver.positions(q)
+    size = max(float(np.max(np.abs(z))) for z in kin.pos.values())
+    closure = max(float(np.max(np.abs(r))) for r in residuals(solver, kin).values()) / size ** 2
+    h = 1e-3 * (c.hi - c.lo)
+    out = []
+    for func in (c.solve, c.by_hand):
+        f0 = func(q)
+        steps = {k: func(q + k * h) for k in (-2, -1, 1, 2)}
+        worst = 0.0
+        for name in c.base:
+            angle = not name.startswith(("x", "y"))
+            d = {k: _diff(f[name], f0[name], angle) for k, f in steps.items()}
+            d1 = (8 * (d[1] - d[-1]) - (d[2] - d[-2])) / (12 * h)        # five points
+            d2 = (16 * (d[1] + d[-1]) - (d[2] + d[-2])) / (12 * h * h)
+            for rate, fd in ((f0[name + "dot"], d1 * c.qd),
+                             (f0[name + "ddot"], d2 * c.qd ** 2 + d1 * c.qdd)):
+                scale = max(float(np.max(np.abs(rate))), 1e-300)
+                worst = max(worst, float(np.max(np.abs(rate - fd))) / scale)
+        out.append(worst)
+    mine, hand = c.solve(q), c.by_hand(q)
+    agree = 0.0
+    for name in c.names:
+        angle = not name.startswith(("x", "y")) and name in c.base
+        scale = 1.0 if angle else max(float(np.max(np.abs(hand[name]))), 1e-300)
+        agree = max(agree, float(np.max(np.abs(_diff(mine[name], hand[name], angle)))) / scale)
+    return closure, out[0], out[1], agree
+
+
+# --- the run ---------------------------------------------------------------------------
+def machine() -> str:
+    model = platform.processor() or "unknown CPU"
+    try:
+        with open("/proc/cpuinfo", encoding="ascii", errors="replace") as handle:
+            model = next((line.split(":", 1)[1].strip() for line in handle
+                          if line.startswith("model name")), model)
+    except OSError:
+        pass
+    return (f"{os.cpu_count()} cores ({model}), Python {platform.python_version()}, "
+            f"NumPy {np.__version__}")
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--quick", action="store_true", help="stop at N = 10^6")
+    parser.add_argument("--child", nargs=3, help=argparse.SUPPRESS)
+    args = parser.parse_args(argv)
+    if args.child:
+        print(json.dumps(child(args.child[0], args.child[1], int(args.child[2]))))
+        return 0
+    sizes = [n for n in SIZES if not args.quick or n <= 10 ** 6]
+    os.makedirs(OUT, exist_ok=True)
+    rows = []
+    for key in CASES:
+        c = case(key)
+        c.solve(c.grid(8))
+        closure, fd_mine, fd_hand, agree = accuracy(c)
+        print(f"{key}: closure {closure:.1e}, rates vs FD {fd_mine:.1e} (hand {fd_hand:.1e}), "
+              f"linkcli - hand {agree:.1e}", flush=True)
+        for n in sizes:
+            row = {"mechanism": key, "N": n, "closure": closure, "fd": fd_mine,
+                   "fd_hand": fd_hand, "agree": agree}
+            if n <= 10 ** 6:
+                q = c.grid(n)
+                budget = 2.0 if n < 10 ** 6 else 1.0
+                row["linkcli"] = best_time(lambda: c.solve(q), budget) / n
+                row["hand"] = best_time(lambda: c.by_hand(q), budget) / n
+            else:
+                for method in ("linkcli", "hand"):
+                    run = subprocess.run([sys.executable, os.path.abspath(__file__), "--child",
+                                          key, method, str(n)], capture_output=True, text=True,
+                                         check=True)
+                    got = json.loads(run.stdout.strip().splitlines()[-1])
+                    row[method] = got["seconds"] / n
+                    row[method + "_rss"] = got["rss_MB"]
+            rows.append(row)
+            print(f"  N={n:<9d} linkcli {row['linkcli'] * 1e9:8.1f} ns/pos  hand "
+                  f"{row['hand'] * 1e9:8.1f} ns/pos  ratio {row['linkcli'] / row['hand']:.2f}",
+                  flush=True)
+    peers = []
+    for name in PEERS:
+        try:
+            importlib.import_module(name)
+            peers.append(f"{name}: importable, but no adapter in this benchmark")
+        except ImportError:
+            peers.append(f"{name}: not installed, skipped")
+    text = table(rows, peers)
+    print("\n" + text)
+    with open(os.path.join(OUT, "speed.md"), "w", encoding="utf-8") as handle:
+        handle.write(text + "\n")
+    with open(os.path.join(OUT, "speed.json"), "w", encoding="utf-8") as handle:
+        json.dump({"machine": machine(), "rows": rows, "peers": peers}, handle, indent=1)
+    print(f"\nchart: {chart(rows)}")
+    return 0
+
+
+def table(rows, peers) -> str:
+    lines = ["# linkcli against hand-written NumPy", "",
+             f"{time.strftime('%Y-%m-%d')}, {machine()}.", "",
+             "Time per position of positions, velocities and accelerations of every reported "
+             "quantity (N = 360: per call); 10^7 in blocks of 16384 in a fresh process "
+             "(peak RSS of that process). Accuracy on 10^4 positions: closure residual "
+             "(relative to size^2), rates against five-point finite differences (relative; the "
+             "differences are good to ~1e-8), linkcli against hand-written.", "",
+             "| mechanism | N | linkcli | hand-written | ratio | peak RSS linkcli / hand "
+             "| closure | rates vs FD (hand) | linkcli - hand |",
+             "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    for r in rows:
+        n = r["N"]
+        if n == 360:
+            mine, hand = f"{r['linkcli'] * n * 1e3:.3f} ms", f"{r['hand'] * n * 1e3:.3f} ms"
+        else:
+            mine, hand = f"{r['linkcli'] * 1e9:.0f} ns", f"{r['hand'] * 1e9:.0f} ns"
+        rss = f"{r['linkcli_rss']:.0f} / {r['hand_rss']:.0f} MB" if "linkcli_rss" in r else ""
+        size = str(n) if n < 10 ** 4 else f"10^{round(math.log10(n))}"
+        lines.append(f"| {r['mechanism']} | {size} | {mine} | {hand} | "
+                     f"{r['linkcli'] / r['hand']:.2f}x | {rss} | {r['closure']:.1e} | "
+                     f"{r['fd']:.1e} ({r['fd_hand']:.1e}) | {r['agree']:.1e} |")
+    lines += ["", "Peers: " + "; ".join(peers) + "."]
+    return "\n".join(lines)
+
+
+def chart(rows) -> str:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, (ax, ratio) = plt.subplots(1, 2, figsize=(12, 4.5))
+    for i, key in enumerate(CASES):
+        mine = [(r["N"], r["linkcli"] * 1e9, r["hand"] * 1e9) for r in rows
+                if r["mechanism"] == key]
+        if not mine:
+            continue
+        n, a, b = zip(*mine)
+        ax.loglog(n, a, "-o", color=f"C{i}", label=f"{key}, linkcli")
+        ax.loglog(n, b, "--s", color=f"C{i}", label=f"{key}, hand-written")
+        ratio.semilogx(n, np.array(a) / np.array(b), "-o", color=f"C{i}", label=key)
+    ax.set_xlabel("positions N")
+    ax.set_ylabel("time per position [ns]")
+    ax.set_title("positions, velocities, accelerations")
+    ratio.set_xlabel("positions N")
+    ratio.set_ylabel("linkcli / hand-written")
+    ratio.set_ylim(bottom=0)
+    ratio.set_title("ratio")
+    for a in (ax, ratio):
+        a.grid(True, which="both", alpha=0.3)
+        a.legend(fontsize=8)
+    fig.tight_layout()
+    path = os.path.join(OUT, "speed.png")
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return path
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,181 @@
+"""The evaluation plan (answers.quantities.Plan) gives the values of evaluating every name
+on its own, on every shipped mechanism with a driver, at the file's position and at random
+driver values; it is built once per (mechanism, names, method) and reused."""
+from __future__ import annotations
+
+import glob
+import math
+import os
+
+import numpy as np
+import pytest
+
+import linkcli
+from linkcli.answers import quantities
+from linkcli.answers.quantities import Result, plan_for, report_names
+from linkcli.errors import LinkcliError, SolveError
+from linkcli.kinematics.solvers import solver_for
+from linkcli.model.mechanism import split_rate
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SHIPPED = sorted(glob.glob(os.path.join(ROOT, "mechanisms", "*.yaml")))
+FOURBAR = """title: four-bar
+units: {length: mm, angle: deg}
+frame: {A0: [0, 0], B0: [300, 0]}
+points: {A: [0, 100], B: [250, 250]}
+links:
+  crank: {points: [A0, A], length: 100}
+  coupler: {points: [A, B], length: 280}
+  rocker: {points: [B0, B], length: 260}
+driver: {angle: [A0, A], value: 90, rate: 10, accel: 2}
+quantities: {beta: {angle: [A, B]}, gamma: {angle: [B0, B], signed: true}, AB: {length: [A0, B]}}
+report:
+  position: [beta, gamma, AB, xB, yB]
+  velocity: [betadot, gammadot, ABdot, xBdot]
+  acceleration: [betaddot, gammaddot, ABddot, yBddot]
+  points: [B]
+"""
+
+
+KINDS = ("q", "x", "y", "angle", "length", "load") + quantities.TEXTBOOK
+
+
+def _driven(path):
+    try:
+        mech = linkcli.load(path).model
+    except LinkcliError:
+        return None
+    return mech if mech.elements is None and len(mech.coordinates) == 1 else None
+
+
+#: the shipped files with a driver (vibration problems have coordinates and no driver)
+FILES = [p for p in SHIPPED if _driven(p) is not None]
+
+
+def _names(mech):
+    """The report's names of the kinds evaluated at one position (not sweeps' maxima)."""
+    return [n for n in dict.fromkeys(report_names(mech))
+            if mech.quantities[split_rate(n)[0]].kind in KINDS]
+
+
+def _each(mech, kin, names):
+    """Every name evaluated on its own by quantities._value (no plan), on ``kin``."""
+    kin.vectors.clear()
+    return quantities._collect_each(mech, solver_for(mech), kin, names, Result(mech))
+
+
+def _driver_values(mech, count=12, seed=0):
+    """Random driver values (display units) around the file's: a whole turn for an angle,
+    +-10 % for a length."""
+    base = "angle" if mech.driver.kind == "angle" else "length"
+    factor = mech.units.display(base, 0)[1]
+    value = mech.driver.value / factor
+    rng = np.random.default_rng(seed)
+    spread = 2 * math.pi / factor if base == "angle" else 0.1 * max(abs(value), 1e-9)
+    return value + spread * rng.uniform(-0.5, 0.5, count)
+
+
+def _same(a, b):
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    return a.shape == b.shape and np.array_equal(a, b)
+
+
+@pytest.mark.parametrize("path", FILES, ids=os.path.basename)
+def test_plan_gives_the_values_of_each_name_on_its_own(path):
+    mech = _driven(path)
+    names = _names(mech)
+    try:
+        quantities.evaluate(mech, names=names)
+    except LinkcliError:
+        pytest.skip("not solved by the closed form at the file's own position")
+    points = [None] + list(_driver_values(mech))
+    solved = 0
+    for q in points:
+        try:
+            planned = quantities.evaluate(mech, q, names=names)
+        except LinkcliError:
+            continue                       # unassembled or singular there: refused by both
+        try:
+            direct = _each(mech, planned.kinematics, names)
+        except SolveError:
+            continue
+        solved += 1
+        assert list(planned.values) == list(direct.values)
+        for name, value in direct.values.items():
+            assert _same(planned.values[name], value), (name, q, planned.values[name], value)
+            assert planned.units[name] == direct.units[name], name
+        for p, xy in direct.points.items():
+            assert all(_same(u, v) for u, v in zip(planned.points[p], xy)), p
+    assert solved, "not even the file's own position solved"
+
+
+@pytest.mark.parametrize("path", FILES, ids=os.path.basename)
+def test_plan_on_an_array_gives_each_position_as_alone(path):
+    """One position and many take the same path: an array of driver values gives, row by
+    row, the values of each driver value solved alone."""
+    mech = _driven(path)
+    alone = {}
+    names = _names(mech)
+    for q in _driver_values(mech, 8, seed=1):
+        try:
+            alone[q] = quantities.evaluate(mech, q, names=names).values
+        except LinkcliError:
+            continue
+    if not alone:
+        pytest.skip("no random driver value assembles")
+    many = quantities.evaluate(mech, np.array(list(alone)), names=names).values
+    for i, values in enumerate(alone.values()):
+        for name, value in values.items():
+            assert np.isclose(many[name][i], value, rtol=1e-12, atol=1e-12), (name, i)
+
+
+def test_plan_is_built_once_and_reused(monkeypatch):
+    mech = linkcli.loads(FOURBAR).model
+    built = []
+    init = quantities.Plan.__init__
+
+    def counting(self, *args, **kw):
+        built.append(args[1])
+        init(self, *args, **kw)
+    monkeypatch.setattr(quantities.Plan, "__init__", counting)
+    first = plan_for(mech)
+    for q in (80.0, np.linspace(0, 90, 7), 10.0):
+        quantities.evaluate(mech, q)
+        quantities.evaluate(mech, q, names=["beta", "gammadot"])
+    assert plan_for(mech) is first
+    assert len(built) == 2, built                   # the report's names, and the two asked
+    assert plan_for(mech, ["beta", "gammadot"]) is plan_for(mech, ("beta", "gammadot"))
+    assert plan_for(mech, method="newton") is not first
+
+
+def test_plan_values_against_the_definitions():
+    """beta = arg(B - A) in [0, 360), gamma signed in (-180, 180], AB = |B - A0|, and their
+    rates against central differences of the positions."""
+    mech = linkcli.loads(FOURBAR).model
+    q = np.linspace(40, 140, 11)
+    res = quantities.evaluate(mech, q)
+    pos = res.kinematics.pos
+    z = (pos["B"] - pos["A"]) / 1e-3
+    assert np.allclose(res.values["beta"], np.degrees(np.angle(z)) % 360, atol=1e-12)
+    gamma = np.degrees(np.angle(pos["B"] - pos["B0"]))
+    assert np.allclose(res.values["gamma"], gamma, atol=1e-12)
+    assert np.all((res.values["gamma"] > -180) & (res.values["gamma"] <= 180))
+    assert np.allclose(res.values["AB"], np.abs(pos["B"] - pos["A0"]) / 1e-3, rtol=1e-14)
+    h = 1e-4
+    up, dn = quantities.evaluate(mech, q + h), quantities.evaluate(mech, q - h)
+    rate = 10.0           # deg/s
+    for name in ("beta", "gamma", "AB"):
+        d1 = (up.values[name] - dn.values[name]) / (2 * h) * rate
+        scale = np.max(np.abs(res.values[name + "dot"]))
+        assert np.allclose(res.values[name + "dot"], d1, atol=1e-7 * scale), name
+
+
+def test_a_non_finite_value_is_named_not_returned(monkeypatch):
+    """One finiteness check for the whole table still names the first bad quantity."""
+    mech = linkcli.loads(FOURBAR).model
+    kin = quantities.evaluate(mech, 80.0).kinematics
+    kin.vectors.clear()
+    kin.pos["B"] = kin.pos["B"] * np.nan
+    with pytest.raises(SolveError, match="'beta' is not a finite number"), \
+            np.errstate(all="ignore"):
+        plan_for(mech).collect(mech, solver_for(mech), kin)

@@ -36,8 +36,8 @@ def explain(mech) -> str:
         lines.append(f"  {step}. {group.describe()}{branch}")
     from linkcli.answers.validate import figure_cautions
     lines += [f"  {c}" for c in figure_cautions(mech)]
-    if any(b.kind == "block" and b.guide.carrier != FRAME for b in mech.bodies.values()):
-        lines.append("  (sliders on moving guides add Coriolis terms to the accelerations)")
+    if any(b.kind == "block" and _turns(mech, b.guide.carrier) for b in mech.bodies.values()):
+        lines.append("  (sliders on turning guides add Coriolis terms to the accelerations)")
     if mech.elements is not None:
         from linkcli.answers.vibration import explain_lines
         lines += [""] + explain_lines(mech)
@@ -61,3 +61,12 @@ def _statics_terms(mech) -> list:
                   "axial": f"d|{load.target}|/dt", "driver": "qdot"}[load.kind]
         terms.append(f"{load.name} * {target}")
     return ["  " + " + ".join(terms) + " = 0" if terms else "  (no loads)"]
+
+
+def _turns(mech, carrier: str) -> bool:
+    """Whether a guide's carrier turns: the frame does not, nor a slider block that runs on a
+    guide that does not turn (a Scotch yoke's block translates: no Coriolis term)."""
+    if carrier == FRAME:
+        return False
+    body = mech.bodies[carrier]
+    return body.kind != "block" or _turns(mech, body.guide.carrier)

@@ -111,7 +111,8 @@ def _kinematics(mech, w) -> list:
         if group.point is None:
             lines.append(f"{group.describe()}")
             continue
-        lines.append(f"{group.describe()}: {group.point} = {_xy(kin.pos[group.point], f)} {unit}")
+        lines.append(f"{group.describe()}: {_shown(group.point)} = "
+                     f"{_xy(kin.pos[group.point], f)} {unit}")
         for c in group.constraints:
             text = _constraint_text(c, mech, f, unit)
             if text:
@@ -137,7 +138,7 @@ def _systems(solver, kin, order):
     for index, group in enumerate(solver.groups):
         if group.is_dyad and group.point is not None:
             g1, g2, r1, r2, value = solver.rate_system(index, kin, order)
-            out.append((group.point, g1, g2, r1, r2, value))
+            out.append((_shown(group.point), g1, g2, r1, r2, value))
     return out
 
 
@@ -150,8 +151,17 @@ def _constraint_text(c, mech, f, unit):
         body = mech.bodies.get(c.body)
         if body is not None and body.guide is not None and c.b.startswith("~"):
             return f"{c.p} on the guide {body.guide.text}"
-        return f"cross({c.c} - {c.b}, {c.p} - {c.b}) = {c.value / f ** 2:.6g} {unit}^2"
+        b, cc, p = _shown(c.b), _shown(c.c), _shown(c.p)
+        return f"cross({cc} - {b}, {p} - {b}) = {c.value / f ** 2 + 0.0:.6g} {unit}^2"
     return None
+
+
+def _shown(point: str) -> str:
+    """A point's printed name: the construction point ``~BLOCK.slot`` of a slot's dyad (a
+    point of the line through the pin parallel to the slot) is V_BLOCK."""
+    if point.startswith("~") and point.endswith(".slot"):
+        return f"V_{point[1:-len('.slot')]}"
+    return point
 
 
 def _statics(mech, solver, kin, w):

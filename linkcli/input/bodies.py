@@ -126,10 +126,14 @@ class BodiesSection:
     def sliders(self, data, units, pool, bodies, fixed):
         spec = self.mapping(self.get(data, (), "sliders", required=False, default={}) or {},
                             ("sliders",))
+        # every block's points first: a guide may run on a block listed after its slider
+        self.block_points = {name: _listed_points(value) for name, value in spec.items()}
+        self.figure = None                # the figure's points, read when a guide moves
         for name, value in spec.items():
-            self.block(self.slider, name, value, units, pool, bodies, fixed)
+            self.block(self.slider, name, value, units, pool, bodies, fixed, data)
+        self.block(self.guide_cycles, bodies)
 
-    def slider(self, name, value, units, pool, bodies, fixed):
+    def slider(self, name, value, units, pool, bodies, fixed, data=None):
         path = ("sliders", name)
         self.name(name, path, what="slider")
         value = self.mapping(value, path, {"point", "guide", "carries"}, ("point", "guide"))
@@ -137,13 +141,103 @@ class BodiesSection:
         guide = self.guide(value["guide"], path + ("guide",), units, pool, bodies, fixed, name)
         local = {point: 0j}
         carries = self.mapping(value.get("carries") or {}, path + ("carries",))
+        if carries and guide.carrier.endswith(".cylinder"):
+            raise self.error(path + ("carries",), f"a block on the line of actuator "
+                             f"{guide.carrier[:-len('.cylinder')]} carries no other points",
+                             hint="pin a link to the block's point to carry them")
         for other, offset in carries.items():
             opath = path + ("carries", other)
             self.name(other, opath, pool)
             local[other] = self.offset(offset, opath, units, guide, fixed)
         if name in bodies:
             raise self.error(path, f"name '{name}' is already used by a link or actuator")
+        if guide.carrier != FRAME and data is not None:
+            self.on_slot(path, point, guide, data, units, fixed)
         bodies[name] = Body(name, "block", tuple(local), local, guide)
+
+    def on_slot(self, path, point, guide: Guide, data, units, fixed):
+        """Refuse a moving guide that does not pass where the figure puts the block's point.
+
+        The figure's distance of P from the line cross(C - B, P - B) = |C - B| e must be
+        at most SLOT_FIGURE times the mechanism's size (the diagonal of the box around the
+        figure's points): the figure picks the assembly, so it must draw the pin
+        in its slot, if only approximately.
+        """
+        figure = self.figure
+        if figure is None:
+            figure = self.figure = self.figure_points(data, units, fixed)
+        if not {point, guide.b, guide.c} <= set(figure):
+            return
+        b, c, p = figure[guide.b], figure[guide.c], figure[point]
+        axis = c - b
+        if abs(axis) == 0:
+            return                        # no direction drawn: the solver's figure check
+        off = (axis.conjugate() * (p - b)).imag / abs(axis) - guide.offset
+        xs, ys = [z.real for z in figure.values()], [z.imag for z in figure.values()]
+        size = abs(complex(max(xs) - min(xs), max(ys) - min(ys)))
+        if abs(off) > SLOT_FIGURE * size:
+            unit, f = units.display("length", 0)
+            raise self.error(path + ("guide",), f"the figure puts {point} {abs(off) / f:.4g} "
+                             f"{unit} {'left' if off > 0 else 'right'} of the guide "
+                             f"{guide.text}, which should pass through it",
+                             hint=f"check the guide's points and offset, or {point}'s "
+                             "position in 'points'")
+
+    def figure_points(self, data, units, fixed) -> dict:
+        """The figure's points (frame and moving) that read without errors."""
+        figure = {n: z for n, z in fixed.items() if not n.startswith("~")}
+        points = data.get("points")
+        if not isinstance(points, dict):
+            return figure
+        before = len(self.errors)
+        for name, value in points.items():
+            if isinstance(name, str) and name not in figure:
+                try:
+                    figure[name] = self.xy(value, ("points", name), units)
+                except _Skip:
+                    pass
+        del self.errors[before:]          # reported where the points are read
+        return figure
+
+    def guide_cycles(self, bodies):
+        """Refuse blocks whose guides run on each other (no block of the cycle is placed)."""
+        for body in bodies.values():
+            seen = [body.name]
+            carrier = body.guide.carrier if body.kind == "block" else FRAME
+            while carrier in bodies and bodies[carrier].kind == "block":
+                if carrier == body.name:
+                    raise self.error(("sliders", body.name, "guide"), "the guides of sliders "
+                                     f"{', '.join(seen)} run on each other in a ring",
+                                     hint="one of them must run on the frame or on a link")
+                if carrier in seen:
+                    break
+                seen.append(carrier)
+                carrier = bodies[carrier].guide.carrier
+
+    def carrier(self, b, c, path, bodies, slider) -> str:
+        """The body a moving guide along [b, c] belongs to: a link with both points, a
+        slider block carrying both (listed in any order) or an actuator between them (its
+        cylinder)."""
+        link = next((body.name for body in bodies.values() if body.kind == "link"
+                     and b in body.points and c in body.points), None)
+        if link is not None:
+            return link
+        points = getattr(self, "block_points", {})
+        if {b, c} <= points.get(slider, set()):
+            raise self.error(path, f"slider {slider} cannot run on a guide of its own points "
+                             f"{b} and {c}", hint="a slot belongs to another block or a link")
+        block = next((name for name, own in points.items() if name != slider
+                      and {b, c} <= own), None)
+        if block is not None:
+            return block
+        actuator = next((body.name for body in bodies.values() if body.kind == "cylinder"
+                         and {b, c} == {body.points[0], bodies[body.name[:-len("cylinder")]
+                                                             + "rod"].points[0]}), None)
+        if actuator is not None:
+            return actuator
+        raise self.error(path, f"no link, slider block or actuator carries both {b} and {c}",
+                         hint="a moving guide runs along two points of one link or block, or "
+                         "along an actuator's two points")
 
     def offset(self, value, path, units, guide: Guide, fixed) -> complex:
         """Offset of a carried point in the guide's axes (along, left normal).
@@ -171,18 +265,17 @@ class BodiesSection:
     def guide(self, value, path, units, pool, bodies, fixed, slider) -> Guide:
         """A line: {x: c}, {y: c}, {through: P or [x, y], angle: a} or {along: [B, C], offset: e}."""
         value = self.mapping(value, path, {"x", "y", "through", "angle", "along", "offset"})
-        text = ", ".join(f"{k}: {v}" for k, v in value.items())
+        text = ", ".join(f"{k}: [{', '.join(map(str, v))}]" if isinstance(v, list) else
+                         f"{k}: {v}" for k, v in value.items())
         offset = self.number(value.get("offset", 0), path + ("offset",), "length", units)
         if "along" in value:
             b, c = self.pair(value["along"], path + ("along",), pool)
-            if b in fixed and c in fixed:
-                carrier = FRAME
-            else:
-                carrier = next((body.name for body in bodies.values() if body.kind == "link"
-                                and b in body.points and c in body.points), None)
-                if carrier is None:
-                    raise self.error(path + ("along",), f"no link carries both {b} and {c}",
-                                     hint="a moving guide runs along two points of one link")
+            carrier = FRAME if b in fixed and c in fixed else \
+                self.carrier(b, c, path + ("along",), bodies, slider)
+            if carrier.endswith(".cylinder") and offset != 0:
+                raise self.error(path + ("offset",), "a guide along an actuator is its line: "
+                                 "its offset must be 0", hint="run the guide along two points "
+                                 "of a link for a line beside it")
             return Guide(carrier, b, c, offset, text)
         if "x" in value or "y" in value:
             if len(value) != 1 + ("offset" in value):
@@ -209,3 +302,18 @@ class BodiesSection:
         fixed[b] = origin
         fixed[c] = origin + direction * scale
         return Guide(FRAME, b, c, offset, text)
+
+
+#: a moving guide may miss its point in the figure by this fraction of the mechanism's size
+SLOT_FIGURE = 0.1
+
+
+def _listed_points(value) -> set:
+    """The point names a slider's entry lists (its point and carried points), unchecked."""
+    if not isinstance(value, dict):
+        return set()
+    names = [value.get("point")]
+    carries = value.get("carries")
+    if isinstance(carries, dict):
+        names += list(carries)
+    return {n for n in names if isinstance(n, str)}

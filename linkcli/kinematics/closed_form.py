@@ -161,7 +161,7 @@ class Solver:
 
     def _candidates(self, group, pos, q):
         """[(distance to the figure point, branch, position, assembles)] of a dyad."""
-        target = self.mech.moving[group.point]
+        target = self._target(group)
         out = []
         for branch in (1, -1):
             group.branch = branch
@@ -170,6 +170,16 @@ class Solver:
             ok = not _fails(short)
             out.append((abs(p - target), branch, p, ok))
         return sorted(out, key=lambda c: c[0])
+
+    def _target(self, group) -> complex:
+        """Where the figure draws a dyad's point; a virtual point (``~BLOCK.slot``) is
+        drawn by its recipe ``group.place`` = (K, M, N, w): K + (M - N) w."""
+        target = self.mech.moving.get(group.point)
+        if target is None:
+            figure = {**self.mech.fixed, **self.mech.moving}
+            k, m, n, w = group.place
+            target = figure[k] + (figure[m] - figure[n]) * w
+        return target
 
     def _search(self, q):
         """(branches, forced text) of the assembling combination nearest the figure, found
@@ -318,7 +328,7 @@ class Solver:
             dist, line = (c1, c2) if kind == "RRP" else (c2, c1)
             return dyads.circle_line(pos[dist.a], self._length(dist, q), pos[line.b],
                                      pos[line.c], line.value, group.branch, flat=True)
-        if kind == "PRP":
+        if kind in ("PRP", "RPP"):         # a point on two lines (RPP: module topology)
             u1, e1 = dyads.line_frame(pos[c1.b], pos[c1.c], c1.value)
             u2, e2 = dyads.line_frame(pos[c2.b], pos[c2.c], c2.value)
             p, parallel = dyads.line_line(pos[c1.b], u1, e1, pos[c2.b], u2, e2)
@@ -367,7 +377,7 @@ class Solver:
             pos[group.point] = p
             if short is not None:
                 kin.short[index] = short
-            if flat and np.any(flat[0]):
+            if flat and flat[0].any():
                 kin.flat[index] = flat[0]
         return kin
 
@@ -470,7 +480,10 @@ class Solver:
     def check(self, kin: Kinematics, velocities: bool):
         """Raise when a group cannot be assembled or (for rates) is singular."""
         for index, short in kin.short.items():
-            bad = np.broadcast_to(short > 0, kin.shape) if np.ndim(short) else short > 0
+            bad = short > 0
+            if not _anywhere(bad):          # the common case, decided on the array as it is
+                continue
+            bad = np.broadcast_to(bad, kin.shape) if np.ndim(short) else bad
             if np.any(bad):
                 worst = float(np.max(np.where(bad, short, 0.0)))
                 reason = "the links are parallel" if not np.isfinite(worst) else \
@@ -480,7 +493,7 @@ class Solver:
             return
         for index, measure in kin.measure.items():
             bad = measure < SINGULAR
-            if np.any(bad):
+            if _anywhere(bad):
                 raise singular_error(self.mech, self.groups[index], kin.q,
                                      np.broadcast_to(bad, kin.shape), measure,
                                      "sine of the angle between its constraint directions")
@@ -613,6 +626,11 @@ def _q_text(q, bad, factor, unit) -> str:
 
 def _get(d, name):
     return d.get(name, 0.0)
+
+
+def _anywhere(mask) -> bool:
+    """np.any(mask), without its dispatch for the arrays the groups return."""
+    return mask.any() if isinstance(mask, np.ndarray) else bool(np.any(mask))
 
 
 def _grad(c, pos, unknown):

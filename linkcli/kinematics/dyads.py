@@ -37,8 +37,7 @@ def _root(disc, scale2):
 
 def _complex(re, im):
     """re + i im as a complex array, without the temporaries of ``re + 1j * im``."""
-    shape = np.broadcast_shapes(np.shape(re), np.shape(im))
-    out = np.empty(shape, complex)
+    out = np.empty(np.broadcast(re, im).shape, complex)
     out.real = re
     out.imag = im
     return out
@@ -54,7 +53,7 @@ def cis(angle):
 
 
 def _no_short(*arrays):
-    return np.zeros(np.broadcast_shapes(*(np.shape(x) for x in arrays)))
+    return np.zeros(np.broadcast(*arrays).shape)
 
 
 def circle_circle(a, r1, b, r2, branch, flat=False):
@@ -65,14 +64,15 @@ def circle_circle(a, r1, b, r2, branch, flat=False):
     """
     d_vec = b - a
     d2 = np.asarray(d_vec.real * d_vec.real + d_vec.imag * d_vec.imag)
-    if np.any(d2 == 0):
+    if (d2 == 0).any():
         p, short = _circle_circle_safe(a, r1, b, r2, branch)
         return (p, short, np.abs(d2) == 0) if flat else (p, short)
     r1sq = r1 * r1
     t = (r1sq - r2 * r2 + d2) / (2.0 * d2)
-    e = r1sq / d2 - t * t
-    if np.any(e < 0):
-        s, gap = _root(e, np.maximum(r1sq / d2, t * t))
+    along2, across2 = t * t, r1sq / d2          # (a/d)^2 and (r1/d)^2
+    e = across2 - along2
+    if (e < 0).any():
+        s, gap = _root(e, np.maximum(across2, along2))
         d = np.sqrt(d2)
         short = np.where(gap > 0, np.maximum(d - (r1 + r2), np.abs(r1 - r2) - d), 0.0)
     else:
@@ -81,7 +81,7 @@ def circle_circle(a, r1, b, r2, branch, flat=False):
     if not flat:
         return p, short
     reach = (np.abs(a) + np.abs(b)) / np.sqrt(d2)          # coordinates against the span
-    noise = TOGGLE * np.maximum(r1sq / d2, t * t) * (1.0 + reach)
+    noise = TOGGLE * np.maximum(across2, along2) * (1.0 + reach)
     return p, short, np.abs(e) <= noise
 
 

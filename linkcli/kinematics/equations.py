@@ -121,9 +121,14 @@ def block_rows(mech, body, index):
 
 
 def _guide_length(mech, guide):
-    """|C - B| of a guide, on the frame or on its carrier body."""
+    """|C - B| of a guide, on the frame or on its carrier body; on an actuator's line
+    (offset 0, the block's only point on it: every row reads cross(C - B, P - B) = 0) the
+    figure's, as the rows' length scale."""
     if guide.carrier == FRAME:
         return abs(mech.fixed[guide.c] - mech.fixed[guide.b])
+    if mech.bodies[guide.carrier].kind == "cylinder":
+        figure = {**mech.fixed, **mech.moving}
+        return abs(figure[guide.c] - figure[guide.b]) or 1.0
     carrier = mech.bodies[guide.carrier].local
     return abs(carrier[guide.c] - carrier[guide.b])
 

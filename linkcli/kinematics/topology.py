@@ -10,6 +10,22 @@ repeatedly finds a moving point fixed by two constraints from known bodies
 (a dyad: RRR, RRP/PRR, PRP, or RPR when the unknown is the orientation of a
 slotted link), or a point placed rigidly on a body whose pose is known.  A
 structure that does not reduce this way is refused by name.
+
+Two dyads solve for a point of their own (``~BLOCK.slot``, a virtual point: the
+answer sheet never lists it, a worked solution names it as it is):
+
+- RPR with the slot off the pivot: a link pivoted at a known K carries a slot
+  along its points D, E (neither of them K), in which a known pin A slides.  With
+  W = E - D (fixed in the link), rigidity gives cross(W, D - K) = cross(W_l, D_l - K_l)
+  (local coordinates), so the slot condition cross(W, A - D) = v becomes
+  cross(V - K, A - K) = v + cross(W_l, D_l - K_l) for V = K + W, |V - K| = |W|: the
+  slotted link through its pivot, solved for V; the link's points follow from K and V.
+- RPP (Scotch yoke): a block Y translates on a guide whose pose is known (direction
+  D = C_Y - B_Y); a pin A, known, slides in a slot of Y along its points S1, S2.  In
+  the guide's axes S_k = Y + D w_k, so the slot condition cross(S2 - S1, A - S1) = v
+  is linear in Y: cross(V - A, Y - A) = -(v + |D|^2 cross(t, w_1)) with t = w_2 - w_1
+  and V = A + D t, the line through A parallel to the slot.  Y is where that line
+  meets Y's own guide (two lines, as PRP).
 """
 from __future__ import annotations
 
@@ -57,11 +73,12 @@ class Coord:
 class Group:
     """One step of the solving order."""
 
-    kind: str              # driver-angle | driver-coord | RRR | RRP | PRR | PRP | RPR | place | RPR-actuator | roll
+    kind: str              # driver-angle | driver-coord | RRR | RRP | PRR | PRP | RPP | RPR | place | RPR-actuator | roll
     point: str | None      # the point it solves (None: nothing to solve)
     constraints: tuple = ()
     bodies: tuple = ()
-    place: tuple = ()      # for 'place': (K, M, N, w) with P = K + (M - N) w
+    place: tuple = ()      # for 'place': (K, M, N, w) with P = K + (M - N) w; for a dyad
+    #                        of a virtual point, the same recipe on the figure's points
     driver: bool = False
     note: str = ""
     branch: int = 1        # assembly branch (+1/-1), chosen from the figure's positions
@@ -69,11 +86,17 @@ class Group:
 
     @property
     def is_dyad(self) -> bool:
-        return self.kind in ("RRR", "RRP", "PRR", "PRP", "RPR")
+        return self.kind in ("RRR", "RRP", "PRR", "PRP", "RPP", "RPR")
 
     def describe(self) -> str:
+        if self.kind == "place" and self.point.startswith("~"):
+            return f"draw the line through {self.place[0]} parallel to the slot of " \
+                f"{self.bodies[0]}"
         if self.kind == "place":
             return f"place {self.point} on {self.bodies[0]} (rigid)"
+        if self.kind == "RPR" and self.point.startswith("~"):
+            return f"dyad RPR: {self.bodies[0]} (slot off its pivot) from {self.note} " \
+                f"[{', '.join(self.bodies)}]"
         if self.kind == "driver-angle":
             return f"driver: {self.bodies[0]} (crank), {self.note}"
         if self.kind == "driver-coord":
@@ -163,6 +186,25 @@ def one_dof(mech: Mechanism) -> Grubler:
 
 def analyse(mech: Mechanism) -> Topology:
     return Topology(one_dof(mech), _Decomposer(mech).run())
+
+
+@dataclass
+class Partial:
+    """The decomposition as far as the dyads reach: the groups found in order, the points
+    they place (frame points included) and the coordinates left unplaced."""
+
+    groups: list
+    known: set
+    pending: list
+
+
+def partial(mech: Mechanism) -> Partial:
+    """The groups found before the decomposition stops (at a class-III group, say), without
+    raising for the points it does not reach; a structural fault it meets still raises."""
+    decomposer = _Decomposer(mech)
+    while decomposer.step():
+        pass
+    return Partial(decomposer.groups, decomposer.known, list(decomposer.pending.values()))
 
 
 class _Decomposer:
@@ -264,7 +306,7 @@ class _Decomposer:
     # one step ------------------------------------------------------------------
     def step(self) -> bool:
         return self.drivers() or self.place() or self.dyad() or self.rpr() or \
-            self.actuator() or self.roll()
+            self.yoke() or self.actuator() or self.roll()
 
     def roll(self) -> bool:
         """A disc whose centre is known, turned by its rolling contact or cord."""
@@ -303,7 +345,7 @@ class _Decomposer:
                     and known:
                 self.settle(body, known)
                 return True
-            if body.kind == "block" and known and body.guide.carrier in self.known_bodies:
+            if body.kind == "block" and known and self.guide_known(body.guide):
                 self.settle(body, known)
                 return True
         return False
@@ -326,14 +368,34 @@ class _Decomposer:
             self.known.add(p)
 
     def guide_length(self, guide) -> float:
+        """|C - B| of a guide: constant on the frame, a link or a block; an actuator's
+        changes (the figure's is returned: its lines have offset 0)."""
         if guide.carrier == FRAME:
             return abs(self.mech.fixed[guide.c] - self.mech.fixed[guide.b])
+        if self.mech.bodies[guide.carrier].kind == "cylinder":
+            return abs(self.mech.moving.get(guide.c, self.mech.fixed.get(guide.c, 0j)) -
+                       self.mech.moving.get(guide.b, self.mech.fixed.get(guide.b, 0j)))
         local = self.mech.bodies[guide.carrier].local
         return abs(local[guide.c] - local[guide.b])
 
+    def guide_known(self, guide) -> bool:
+        """Whether the pose of a guide's line is known: its carrier's (both points of an
+        actuator, which turns with them)."""
+        if guide.carrier == FRAME:
+            return True
+        if guide.carrier not in self.known_bodies:
+            return False
+        return self.mech.bodies[guide.carrier].kind != "cylinder" or \
+            {guide.b, guide.c} <= self.known
+
     def line(self, block, point, unknown) -> Line:
-        """The line on which ``point`` of ``block`` moves, as cross(C - B, P - B) = value."""
+        """The line on which ``point`` of ``block`` moves, as cross(C - B, P - B) = value.
+
+        On an actuator's line (offset 0, no carried points) the value is 0 whatever the
+        actuator's length."""
         g = block.guide
+        if g.carrier != FRAME and self.mech.bodies[g.carrier].kind == "cylinder":
+            return Line(point, g.b, g.c, 0.0, block.name, unknown)
         value = self.guide_length(g) * (g.offset + block.local[point].imag)
         return Line(point, g.b, g.c, value, block.name, unknown)
 
@@ -349,7 +411,7 @@ class _Decomposer:
                 if len(known) == 1:
                     a = known[0]
                     found.append(Dist(p, a, abs(body.local[p] - body.local[a]), body.name))
-            elif body.kind == "block" and body.guide.carrier in self.known_bodies:
+            elif body.kind == "block" and self.guide_known(body.guide):
                 found.append(self.line(body, p, p))
         for ends, j in self.driven.items():
             if p not in ends:
@@ -390,10 +452,15 @@ class _Decomposer:
         """Slotted link: a block pinned at a known point slides on a link pivoted at a known point."""
         for block in self.mech.bodies.values():
             g = block.guide
-            if block.kind != "block" or g.carrier in self.known_bodies or g.carrier == FRAME:
+            if block.kind != "block" or g.carrier in self.known_bodies or g.carrier == FRAME \
+                    or self.mech.bodies[g.carrier].kind != "link":
                 continue
             pins = [p for p in block.points if p in self.known]
             if not pins:
+                continue
+            if g.b not in self.known and g.c not in self.known:
+                if self.off_pivot(block, pins[0]):
+                    return True
                 continue
             b, c, sign = (g.b, g.c, 1) if g.b in self.known else (g.c, g.b, -1)
             if b not in self.known or c in self.known:
@@ -409,6 +476,63 @@ class _Decomposer:
             return True
         return False
 
+    def off_pivot(self, block, pin) -> bool:
+        """RPR with the slot off the pivot (module docstring): solve V = K + (E - D)."""
+        g = block.guide
+        link = self.mech.bodies[g.carrier]
+        known = [p for p in link.points if p in self.known]
+        if len(known) != 1 or link.name in self.rolling_discs:
+            return False
+        k = known[0]
+        local = link.local
+        w_local = local[g.c] - local[g.b]
+        slot = self.line(block, pin, pin).value
+        value = slot + cross_local(w_local, local[g.b] - local[k])
+        v = f"~{block.name}.slot"
+        pair = (Dist(v, k, abs(w_local), link.name), Line(pin, k, v, value, block.name, v))
+        self.groups.append(Group("RPR", v, pair, (link.name, block.name),
+                                 place=(k, g.c, g.b, 1.0),    # V in the figure
+                                 note=f"{k} ({link.name}) and {pin} ({block.name})"))
+        self.known.add(v)
+        self.known_bodies.add(link.name)
+        for p in link.points:
+            if p not in self.known:
+                w = (local[p] - local[k]) / w_local
+                self.groups.append(Group("place", p, bodies=(link.name,), place=(k, v, k, w)))
+                self.known.add(p)
+        self.settle(block, [pin])
+        return True
+
+    def yoke(self) -> bool:
+        """RPP (Scotch yoke, module docstring): a known pin in the slot of a block whose
+        guide's pose is known; solves the block's point."""
+        for pin_block in self.mech.bodies.values():
+            g = pin_block.guide
+            if pin_block.kind != "block" or g.carrier == FRAME:
+                continue
+            yoke = self.mech.bodies[g.carrier]
+            pins = [p for p in pin_block.points if p in self.known]
+            if yoke.kind != "block" or yoke.name in self.known_bodies or not pins or \
+                    not self.guide_known(yoke.guide) or any(p in self.known for p in yoke.points):
+                continue
+            pin, y0 = pins[0], yoke.points[0]
+            size = self.guide_length(yoke.guide)
+            w1 = (yoke.local[g.b] - yoke.local[y0]) / size
+            t = (yoke.local[g.c] - yoke.local[g.b]) / size
+            slot = self.line(pin_block, pin, pin).value
+            value = -(slot + size * size * cross_local(t, w1))
+            v = f"~{pin_block.name}.slot"
+            self.groups.append(Group("place", v, bodies=(yoke.name,),
+                                     place=(pin, yoke.guide.c, yoke.guide.b, t)))
+            self.known.add(v)
+            pair = (self.line(yoke, y0, y0), Line(y0, pin, v, value, pin_block.name, y0))
+            self.groups.append(Group("RPP", y0, pair, (yoke.name, pin_block.name),
+                                     note=" and ".join(self.side_text(c) for c in pair)))
+            self.known.add(y0)
+            self.settle(yoke, [y0])
+            return True
+        return False
+
     def actuator(self) -> bool:
         for act in self.mech.actuators.values():
             if act.name in self.done_actuators or not {act.a, act.b} <= self.known:
@@ -418,3 +542,8 @@ class _Decomposer:
                                      note=f"{act.a}, {act.b}"))
             return True
         return False
+
+
+def cross_local(a: complex, b: complex) -> float:
+    """cross(a, b) = Im(conj(a) b) of two local (constant) vectors."""
+    return (a.conjugate() * b).imag

@@ -3,8 +3,11 @@
     dE/dt = W_motor - W_resistant - W_lost
 
 E the kinetic energy, W_motor the power of the unknown load, W_resistant minus the
-power of the known loads and gravity, W_lost = -sum T v_rel >= 0 the power lost to
-sliding friction.
+power of the known loads and gravity, W_lost >= 0 the power lost (``friction``):
+
+    W_lost = sum mu |N| |v_rel|            sliding friction at the sliders
+           + sum u_r |N| |omega_disc|      rolling resistance of the discs
+           + sum rho |R| |omega_rel|       friction circles at the pins
 
 The unknown load by virtual power with the d'Alembert forces: per unit driver
 rate, sum_loads Q c_Q + P = 0 (``statics.unknown_load``) with the extra power
@@ -13,13 +16,16 @@ rate, sum_loads Q c_Q + P = 0 (``statics.unknown_load``) with the extra power
       + sum C omega_disc,unit                               known torques on rolling discs
       + sum T v_rel,unit                                    sliding friction (T from the
                                                             joint reactions)
+      + sum M omega_disc,unit + sum M omega_rel,unit        rolling resistance and friction
+                                                            circles (M from the reactions)
 """
 from __future__ import annotations
 
 import numpy as np
 
 from linkcli.forces import motion as dyn_mod
-from linkcli.forces.friction import coefficients, friction_power
+from linkcli.forces.friction import (coefficients, friction_circles, friction_power,
+                                     has_losses, resistances)
 from linkcli.forces.joint_forces import solve
 from linkcli.kinematics.solvers import state
 from linkcli.forces.statics import coefficient, unknown_load
@@ -36,7 +42,7 @@ def balance(mech, q=None) -> dict:
     rate = mech.driver.rate
     motor = value * coefficient(mech, mech.unknown_load(), kin.pos, unit.vel) * rate
     lost = -friction_power(mech, dyn, kin, kin.vel, solve(mech, kin)) \
-        if coefficients(dyn) else 0.0
+        if has_losses(dyn) else 0.0
     resistant = -(_known_power(mech, dyn, kin, unit.vel) + dyn_mod.gravity_power(mech, dyn, kin))
     return {"dEdt": dyn_mod.energy_rate(mech, dyn, kin), "motor": motor,
             "resistant": resistant, "lost": lost,
@@ -50,7 +56,7 @@ def dynamic_power(mech, kin, unit_kin):
         return 0.0
     extra = dyn_mod.inertia_gravity_power(mech, dyn, kin, unit_kin.vel) + \
         dyn_mod.disc_torque_power(mech, dyn, kin, unit_kin.vel)
-    if coefficients(dyn):
+    if has_losses(dyn):
         extra = extra + friction_power(mech, dyn, kin, unit_kin.vel, solve(mech, kin))
     return extra
 
@@ -121,16 +127,24 @@ def _power_symbols(mech, dyn, gravity) -> list[str]:
     if dyn.gravity:
         resistant += gravity
     lost = [f"mu_{s} |N_{s}| |v_{s},rel|" for s in coefficients(dyn)]
+    lost += [f"u_{d.name} |N_{d.name}| |omega_{d.name}|" for d in resistances(dyn).values()]
+    lost += [f"rho_{p} |R_{p}| |omega_{f.other} - omega_{f.holder}|"
+             for p, f in friction_circles(dyn).items()]
     return [f"  W_motor = {_load_symbol(mech.unknown_load())}   (the unknown load)",
             "  W_resistant = -(" + _sum(resistant) + ")",
             "  W_lost = " + _sum(lost)]
 
 
 def _data_lines(dyn) -> list[str]:
-    """The rolling discs' spin omega = -s (v_C . u)/R and the gravity vector."""
+    """The rolling discs' spin omega = -s (v_C . u)/R, the losses' data and the gravity
+    vector."""
     lines = [f"  rolling disc {disc.name}: omega_{disc.name} = "
              f"{'-' if disc.side > 0 else '+'}(v_{disc.center} . u)/R, R = {disc.radius:g} m"
              for disc in dyn.discs.values()]
+    lines += [f"  rolling resistance of {disc.name}: u_{disc.name} = {disc.resistance:g} m"
+              for disc in resistances(dyn).values()]
+    lines += [f"  friction circle at {p}: rho_{p} = {f.radius:g} m, {f.other} turning on the pin "
+              f"fixed in {f.holder}" for p, f in friction_circles(dyn).items()]
     if dyn.gravity:
         g = dyn.gravity
         lines.append(f"  g = ({g.real:.6g}, {g.imag:.6g}) m/s^2")

@@ -2,9 +2,11 @@
 
 A x = -b (``newton_euler``) is scaled dimensionless (moment rows / L, moment columns
 * L, L the mechanism's size) and solved as a stack of matrices; a dimensionless
-condition number above ``COND_LIMIT`` is a singular position.  With friction the
-matrix depends on the sign s of each slider's N (``friction``): assume s = +1, solve,
-take s = sgn N, and repeat until the signs agree.
+condition number above ``COND_LIMIT`` is a singular position.  With losses the
+matrix depends on the sign s of each slider's and disc's N and on the direction e of
+each friction circle's R (``friction``): assume s = +1 and no friction circles, solve,
+take s = sgn N and e = R / |R|, and repeat until the signs agree and the solution no
+longer changes (``CONVERGED`` of its size).
 """
 from __future__ import annotations
 
@@ -14,11 +16,16 @@ import numpy as np
 
 from linkcli.errors import Caution, SingularError, SolveError, StructureError
 from linkcli.kinematics.closed_form import where_text
-from linkcli.forces.friction import coefficients, friction_force, normal_factors, sliding_signs
+from linkcli.forces import friction
 from linkcli.forces.newton_euler import System
 from linkcli.forces.pairs import PairForce
 
 COND_LIMIT = 1e12
+#: the losses' iterate has converged when no unknown changes by more than this fraction of
+#: the largest (scaled); the error left is of the order of its square
+CONVERGED = 1e-10
+#: iterates before the losses are declared self-locking
+MAX_ITERATIONS = 60
 
 
 @dataclass
@@ -32,6 +39,8 @@ class Reactions:
     unknown: object = None                       # value of the unknown load (SI)
     cautions: list = field(default_factory=list)  # contacts that pull: they lift off
     loads: dict = field(default_factory=dict)    # every load's value (SI)
+    resistances: dict = field(default_factory=dict)  # disc slider -> rolling resistance couple
+    pin_couples: dict = field(default_factory=dict)  # pin -> friction couple on its ``other``
 
 
 def solve(mech, kin) -> Reactions:
@@ -46,25 +55,55 @@ def solve(mech, kin) -> Reactions:
     dyn = mech.dynamics
     system = System(mech, dyn, kin)
     rhs = -system.known()
-    friction = coefficients(dyn)
-    sigma = sliding_signs(mech, kin, friction)
-    x = _solve_with_friction(system, rhs, friction, sigma)
-    return _unpack(system, x, friction, sigma)
+    losses = friction.losses_at(mech, kin)
+    x, losses = _solve_with_losses(system, rhs, losses)
+    return _unpack(system, x, losses)
 
 
-def _solve_with_friction(system, rhs, friction, sigma):
-    """x with signs s of the sliders' N consistent with the solution: s = +1 first, then
-    s = sgn N (positions whose sign was right keep it); no consistent s is self-locking."""
-    signs = {s: np.ones(system.shape) for s in friction}
-    for _ in range(2 + 2 * len(friction)):
-        x = _solve_stack(system, system.matrix(normal_factors(friction, sigma, signs)), rhs)
-        new = {s: np.where(system.value(x, ("pair", s, 0)) < 0, -1.0, 1.0) for s in friction}
-        if all(np.array_equal(new[s], signs[s]) for s in friction):
-            return x
-        signs = new
-    raise SolveError("Coulomb friction at the sliders admits no consistent normal force "
-                     "here (self-locking)", file=system.mech.file,
-                     hint="reduce the friction coefficient or check the directions")
+def _solve_with_losses(system, rhs, losses):
+    """x with the signs s of the normal forces and the directions e of the friction circles'
+    forces consistent with the solution: s = +1 and e = 0 first, then s = sgn N and
+    e = R / |R|; no consistent solution within ``MAX_ITERATIONS`` is self-locking."""
+    if not losses.any:
+        return _solve_stack(system, system.matrix(losses), rhs), losses
+    previous = None
+    for _ in range(MAX_ITERATIONS):
+        x = _solve_stack(system, system.matrix(losses), rhs)
+        normals = {k: system.value(x, ("pair", k[1], 1 if k[0] == "disc" else 0))
+                   for k in losses.signs}
+        forces = {p: _pin_force(system, x, p, pin.other) for p, pin in losses.pins.items()}
+        new, kept = friction.update(losses, normals, forces)
+        if kept and (not losses.pins or _settled(system, x, previous)):
+            return x, losses
+        losses, previous = new, x
+    raise SolveError("the friction forces admit no consistent joint forces here "
+                     "(self-locking): " + _losses_text(losses), file=system.mech.file,
+                     hint="reduce the friction coefficients, rolling resistances or friction "
+                     "circles, or check the directions")
+
+
+def _losses_text(losses) -> str:
+    parts = [f"mu = {mu:g} at slider {s}" for s, mu in losses.sliders.items()]
+    parts += [f"rolling resistance {d.resistance:g} m of disc {d.name}"
+              for d in losses.discs.values()]
+    parts += [f"friction circle {pin.radius:g} m at pin {p}" for p, pin in losses.pins.items()]
+    return ", ".join(parts)
+
+
+def _pin_force(system, x, point, body):
+    """R: the force of pin ``point`` on ``body``."""
+    return system.value(x, ("pin", (point, body), 0)) + \
+        1j * system.value(x, ("pin", (point, body), 1))
+
+
+def _settled(system, x, previous) -> bool:
+    """No unknown changed by more than CONVERGED of the largest, in scaled units."""
+    if previous is None:
+        return False
+    _, cols = system.scales()
+    new, old = x / cols, previous / cols
+    size = np.max(np.abs(new), axis=-1)
+    return bool(np.all(np.max(np.abs(new - old), axis=-1) <= CONVERGED * size))
 
 
 def _solve_stack(system, a, rhs):
@@ -91,7 +130,7 @@ def _require_regular(system, scaled):
             hint="a toggle position, or a structure whose forces are statically indeterminate")
 
 
-def _unpack(system, x, friction, sigma) -> Reactions:
+def _unpack(system, x, losses) -> Reactions:
     """The solution x as pin forces, pair forces and load values."""
     mech = system.mech
     out = Reactions(mech, system.kin)
@@ -99,7 +138,13 @@ def _unpack(system, x, friction, sigma) -> Reactions:
         if kind == "pin" and part == 0:
             out.pins[key] = x[..., j] + 1j * x[..., j + 1]
     for name, pf in system.pairs:
-        out.pairs[name] = _pair_force(system, x, pf, friction, sigma)
+        out.pairs[name] = _pair_force(system, x, pf, losses)
+    for slider, disc in losses.discs.items():
+        out.resistances[slider] = friction.couple(disc.resistance, losses.sigma[("disc", slider)],
+                                                  out.pairs[slider].normal)
+    for point, pin in losses.pins.items():
+        out.pin_couples[point] = friction.couple(pin.radius, losses.sigma[("pin", point)],
+                                                 out.pins[(point, pin.other)])
     out.unknown = system.value(x, ("unknown", None, 0))
     out.loads = {n: (load.value if load.value is not None else out.unknown)
                  for n, load in mech.loads.items()}
@@ -126,13 +171,13 @@ def lift_off(mech, kin, pairs) -> list:
     return out
 
 
-def _pair_force(system, x, pf, friction, sigma) -> PairForce:
+def _pair_force(system, x, pf, losses) -> PairForce:
     """A disc's (T, N) or a sliding pair's (N, M) with its friction T."""
     first = system.value(x, ("pair", pf.name, 0))
     second = system.value(x, ("pair", pf.name, 1))
     if pf.kind == "disc":
         return PairForce(pf.name, "disc", second, np.zeros_like(first), first, pf.u, pf.n,
                          pf.at, pf.on, pf.carrier)
-    fr = friction_force(friction[pf.name], sigma[pf.name], first) if pf.name in friction \
-        else np.zeros_like(first)
+    fr = friction.friction_force(losses.sliders[pf.name], losses.sigma[("slider", pf.name)],
+                                 first) if pf.name in losses.sliders else np.zeros_like(first)
     return PairForce(pf.name, pf.kind, first, second, fr, pf.u, pf.n, pf.at, pf.on, pf.carrier)

@@ -14,6 +14,12 @@ included at fixed pivots); the two forces of each sliding pair or rolling contac
 (``pairs``); the one unknown load.  Grübler's count n = 1 makes the system square:
 A x = -b, with column j of A the terms per unit unknown j and b the known terms
 (known loads, gravity, inertia forces and torques).
+
+The losses (``friction``) add terms proportional to the contact forces: the friction
+T = (T/N) N along a slider's guide in the column of its N, the rolling resistance
+couple M = (M/N) N on a disc in the column of its N, and at a pin with a friction
+circle the couple M = -rho sgn(omega_rel) e . R on the body whose eye turns on the
+pin (and -M on the body the pin is fixed in) in the columns of R's x and y.
 """
 from __future__ import annotations
 
@@ -118,18 +124,19 @@ class System:
         self.pin_force(vec, d.a, -u * value)
 
     # --- the matrix A and the known terms b ---------------------------------------------
-    def matrix(self, fcoef):
+    def matrix(self, losses):
         """A (shape + (rows, columns)): column j holds the equations' terms per unit unknown j.
 
-        ``fcoef`` maps each slider with friction to T/N = -mu sgn(v_rel) s (s the assumed
-        sign of N).
+        ``losses`` (``friction.Losses``) gives each slider's T/N = -mu sgn(v_rel) s, each
+        disc's M/N = -u_r sgn(omega) s (s the assumed sign of N) and each friction circle's
+        couple per unit component of R.
         """
         a = np.zeros(self.shape + (self.n_rows, len(self.columns)))
         for j, column in enumerate(self.columns):
-            a[..., :, j] = self.column(column, fcoef)
+            a[..., :, j] = self.column(column, losses)
         return a
 
-    def column(self, column, fcoef):
+    def column(self, column, losses):
         """Terms of a unit value of one unknown: x (part 0) or y (part 1) of a pin force,
         a pair's first or second force, or the unknown load."""
         kind, key, part = column
@@ -139,18 +146,27 @@ class System:
             force = 1.0 if part == 0 else 1j
             self.body_force(vec, b, force, self.pos[p])
             self.pin_force(vec, p, -force)
+            couple = losses.pin_factor(p, b, part)
+            if couple is not None:           # the friction circle: M on b, -M on the holder
+                self.body_moment(vec, b, couple)
+                self.body_moment(vec, losses.pins[p].holder, -couple)
         elif kind == "pair":
-            self.pair_column(vec, self.pair[key], part, fcoef.get(key, 0.0))
+            factor = losses.disc_factor(key) if self.pair[key].kind == "disc" \
+                else losses.slider_factor(key)
+            self.pair_column(vec, self.pair[key], part, factor)
         else:
             self.apply_load(vec, self.mech.unknown_load(), 1.0)
         return vec
 
     def pair_column(self, vec, pf, part, fcoef):
-        """Disc: T = 1 along u (part 0) or N = 1 along n (part 1) at the contact.  Slider,
-        actuator: N = 1 along n with its friction fcoef along u (part 0), or M = 1 (part 1);
-        on the moving part, the opposite on the carrier."""
+        """Disc: T = 1 along u (part 0) or N = 1 along n (part 1) at the contact, with the
+        rolling resistance couple fcoef (M/N) on the disc.  Slider, actuator: N = 1 along n
+        with its friction fcoef (T/N) along u (part 0), or M = 1 (part 1); on the moving
+        part, the opposite on the carrier."""
         if pf.kind == "disc":
             self.body_force(vec, pf.on, pf.u if part == 0 else pf.n, pf.at)
+            if part == 1:
+                self.body_moment(vec, pf.on, fcoef)
         elif part == 0:
             force = pf.n + fcoef * pf.u
             self.body_force(vec, pf.on, force, pf.at)

@@ -1,4 +1,5 @@
-"""Reader of the ``dynamics:`` section: gravity, masses and inertias, friction, rolling discs.
+"""Reader of the ``dynamics:`` section: gravity, masses and inertias, friction, rolling discs,
+friction circles.
 
 It runs after the core sections, on the mechanism they built, so that every
 name it meets is checked against the mechanism's points, bodies and loads.
@@ -7,7 +8,7 @@ from __future__ import annotations
 
 import math
 
-from ..model.dynamics import STANDARD_SIDE, Disc, Dynamics, MassBody
+from ..model.dynamics import STANDARD_SIDE, Disc, Dynamics, MassBody, PinFriction
 from ..model.mechanism import FRAME
 
 
@@ -40,7 +41,8 @@ class DynamicsReader:
         dyn = Dynamics()
         try:
             spec = self.p.mapping(spec, path, {"gravity", "bodies", "masses", "friction",
-                                               "discs"}) if spec is not None else {}
+                                               "discs", "friction_circles"}) \
+                if spec is not None else {}
         except self.skip:
             return dyn
         dyn.gravity = self.block(self.gravity, spec.get("gravity"), path + ("gravity",)) or 0j
@@ -62,6 +64,9 @@ class DynamicsReader:
             disc = self.block(self.disc, name, value, path + ("discs", name), dyn)
             if disc is not None:
                 dyn.discs[name] = disc
+        if spec.get("friction_circles") is not None:
+            dyn.pins = self.block(self.friction_circles, spec["friction_circles"],
+                                  path + ("friction_circles",)) or {}
         for disc in dyn.discs.values():
             where = path + ("discs", disc.name, "center")
             if disc.slider in dyn.bodies:
@@ -141,8 +146,8 @@ class DynamicsReader:
 
     def disc(self, name, value, path, dyn) -> Disc:
         self.p.name(name, path, what="disc")
-        spec = self.p.mapping(value, path, {"center", "radius", "mass", "inertia", "side"},
-                              ("center", "radius"))
+        spec = self.p.mapping(value, path, {"center", "radius", "mass", "inertia", "side",
+                                            "rolling_resistance"}, ("center", "radius"))
         center = self.p.name(spec["center"], path + ("center",), set(self.mech.points))
         block = next((b for b in self.mech.bodies.values()
                       if b.kind == "block" and b.points[0] == center), None)
@@ -171,4 +176,51 @@ class DynamicsReader:
             if load.kind == "torque" and load.target == block.name and load.value is None:
                 self.p.error(("loads", load.name), "the unknown load cannot be a torque on the "
                              f"rolling disc {name}", hint="make a force or the driver unknown")
-        return Disc(name, block.name, center, radius, STANDARD_SIDE[side], mass, inertia)
+        resistance = self.amount(spec.get("rolling_resistance", 0), path + ("rolling_resistance",),
+                                 "length", what="a rolling resistance")
+        return Disc(name, block.name, center, radius, STANDARD_SIDE[side], mass, inertia,
+                    resistance)
+
+    # --- friction circles at the pins -------------------------------------------------
+    def friction_circles(self, value, path) -> dict:
+        """A radius rho (length unit, >= 0) for every pin, or {PIN: rho}; a pin of exactly
+        two bodies (the frame counts at a fixed pivot)."""
+        pins = self.pins()
+        if isinstance(value, dict):
+            spec = self.p.mapping(value, path)
+            out = {}
+            for point, radius in spec.items():
+                where = path + (point,)
+                if self.block(self.p.name, point, where, set(pins), "pin") is None:
+                    continue
+                pin = self.block(self.pin_friction, point, pins[point], radius, where)
+                if pin is not None:
+                    out[point] = pin
+            return out
+        radius = self.amount(value, path, "length", what="a friction circle's radius")
+        return {point: self.pin_friction(point, bodies, value, path, radius)
+                for point, bodies in pins.items()}
+
+    def pins(self) -> dict:
+        """Point -> the bodies that meet there, the frame first at a fixed pivot, for every
+        point of two or more bodies."""
+        out = {}
+        for body in self.mech.bodies.values():
+            for point in body.points:
+                out.setdefault(point, []).append(body.name)
+        return {p: ([FRAME] if p in self.mech.fixed else []) + bodies
+                for p, bodies in out.items() if len(bodies) + (p in self.mech.fixed) >= 2}
+
+    def pin_friction(self, point, bodies, value, path, radius=None) -> PinFriction:
+        if len(bodies) != 2:
+            hint = f"leave {point} out" if radius is None else \
+                "give the radius of each two-body pin: {A: 2, B: 2}"
+            raise self.p.error(path, f"pin {point} joins {len(bodies)} bodies "
+                               f"({', '.join(bodies)}): a friction circle acts between two",
+                               hint=hint)
+        if radius is None:
+            radius = self.amount(value, path, "length", what="a friction circle's radius")
+        kinds = {b: ("frame" if b == FRAME else self.mech.bodies[b].kind) for b in bodies}
+        holder = next((b for b in bodies if kinds[b] != "link"), bodies[0])
+        other = next(b for b in bodies if b != holder)
+        return PinFriction(point, holder, other, radius)

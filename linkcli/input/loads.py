@@ -1,10 +1,16 @@
-"""Parsing of the driver and the loads (exactly one of them unknown)."""
+"""Parsing of the driver and the loads (exactly one of them unknown).
+
+A pressure load is a known pressure p on an area A (or a bore of diameter D,
+A = pi D^2 / 4): on a slider of a fixed guide (a piston) it is the force p A at the
+slider's point along the guide's direction u (p > 0 pushes along u, p < 0 against
+it); on an actuator it is the axial load p A (p > 0 pushes the ends apart).
+"""
 from __future__ import annotations
 
 import cmath
 import math
 
-from linkcli.model.mechanism import Driver, Load
+from linkcli.model.mechanism import FRAME, Driver, Load
 from linkcli.input.reader import UNKNOWN
 
 
@@ -73,7 +79,8 @@ class LoadsSection:
                             ("loads",))
         loads = {}
         for name, value in spec.items():
-            load = self.block(self.load, name, value, units, pool, bodies, actuators, driver)
+            load = self.block(self.load, name, value, units, pool, bodies, actuators, driver,
+                              data)
             if load is not None:
                 loads[name] = load
         unknown = [n for n, load in loads.items() if load.value is None]
@@ -87,17 +94,24 @@ class LoadsSection:
                        hint="write 'unknown' as the value the statics must find")
         return loads
 
-    def load(self, name, value, units, pool, bodies, actuators, driver) -> Load:
+    def load(self, name, value, units, pool, bodies, actuators, driver, data=None) -> Load:
         path = ("loads", name)
         self.name(name, path, what="load")
         value = self.mapping(value, path, {"type", "at", "on", "x", "y", "magnitude", "angle",
-                                           "value"}, ("type",))
+                                           "value", "area", "diameter"}, ("type",))
         kind = value["type"]
+        if kind == "pressure":
+            return self.pressure(name, value, path, units, bodies, actuators, data)
+        for key in ("area", "diameter"):
+            if key in value:
+                raise self.error(path + (key,), f"'{key}' is for pressure loads",
+                                 hint="type: pressure, with value (the pressure) and area or "
+                                 "diameter")
         if kind == "force":
             return self.force(name, value, path, units, pool)
         if kind not in ("torque", "axial", "driver"):
             raise self.error(path + ("type",), f"unknown load type {kind!r}",
-                             hint="force, torque, axial or driver")
+                             hint="force, torque, axial, driver or pressure")
         for key in ("at", "x", "y", "magnitude", "angle"):
             if key in value:
                 raise self.error(path + (key,), f"'{key}' is for forces")
@@ -142,3 +156,64 @@ class LoadsSection:
         magnitude = math.hypot(fx, fy)
         direction = complex(fx, fy) / magnitude if magnitude else 1
         return Load(name, "force", at, direction, magnitude)
+
+    # --- pressure on a piston or in an actuator ---------------------------------------
+    def pressure(self, name, value, path, units, bodies, actuators, data) -> Load:
+        """p A as a force along a fixed guide at the slider's point, or as an axial load."""
+        for key in ("at", "x", "y", "magnitude", "angle"):
+            if key in value:
+                raise self.error(path + (key,), f"'{key}' is for forces: a pressure acts along "
+                                 "the slider's guide or the actuator")
+        sliders = {n for n, b in bodies.items() if b.kind == "block"}
+        target = self.name(self.get(value, path, "on"), path + ("on",),
+                           sliders | set(actuators), "body")
+        raw = self.get(value, path, "value")
+        if raw == UNKNOWN:
+            raise self.error(path + ("value",), "a pressure load is known: give the pressure",
+                             hint="to find the force on the piston, make a force along the "
+                             "guide or the driver's load unknown")
+        area = self.area(value, path, units)
+        force = self.number(raw, path + ("value",), "pressure", units) * area
+        if not math.isfinite(force):
+            raise self.error(path + ("value",), f"the force p A is not a finite number "
+                             f"(p = {raw!r})", hint="check the pressure and the area's units")
+        if target in actuators:
+            return Load(name, "axial", target, 1, force)
+        block = bodies[target]
+        if block.guide.carrier != FRAME:
+            raise self.error(path + ("on",), f"slider {target} runs on a guide carried by "
+                             f"{block.guide.carrier}: a pressure acts on a piston in a fixed "
+                             "cylinder", hint="put the pressure on an actuator for a moving "
+                             "cylinder")
+        direction = self.fixed_guide_direction(data, target, units)
+        return Load(name, "force", block.points[0], direction, force)
+
+    def area(self, value, path, units) -> float:
+        """A (m^2) from ``area`` (area unit) or ``diameter`` (length unit): A = pi D^2 / 4."""
+        given = [k for k in ("area", "diameter") if k in value]
+        if len(given) != 1:
+            raise self.error(path, "a pressure load needs exactly one of 'area' or 'diameter'",
+                             hint="the piston's area, or its bore: e.g. diameter: 500")
+        key = given[0]
+        size = self.number(value[key], path + (key,), "area" if key == "area" else "length",
+                           units)
+        if not size > 0:
+            raise self.error(path + (key,), f"a piston's {key} must be positive, got "
+                             f"{value[key]!r}")
+        return size if key == "area" else math.pi * size * size / 4.0
+
+    def fixed_guide_direction(self, data, slider, units) -> complex:
+        """The unit direction of slider ``slider``'s fixed guide as its file wrote it: +y for
+        {x: c}, +x for {y: c}, the angle of {through, angle}, P -> Q of {along: [P, Q]}."""
+        spec = data["sliders"][slider]["guide"]
+        path = ("sliders", slider, "guide")
+        if "x" in spec:
+            return 1j
+        if "y" in spec:
+            return 1
+        if "angle" in spec:
+            return cmath.exp(1j * self.number(spec["angle"], path + ("angle",), "angle", units))
+        p, q = spec["along"]
+        frame = data["frame"]
+        z = self.xy(frame[q], ("frame", q), units) - self.xy(frame[p], ("frame", p), units)
+        return z / abs(z)

@@ -17,6 +17,8 @@ INCH = 0.0254
 LBF = 0.45359237 * 9.80665
 LB = 0.45359237
 SLUG = LBF / FT
+# pressure: psi = lbf / in^2 = 6894.757293168361 Pa; bar = 1e5 Pa; N/mm^2 = MPa = 1e6 Pa
+PSI = LBF / INCH ** 2
 
 LENGTH = {"m": 1.0, "cm": 0.01, "mm": 0.001, "km": 1000.0, "ft": FT, "in": INCH}
 ANGLE = {"rad": 1.0, "deg": math.pi / 180.0}
@@ -39,6 +41,9 @@ TORSIONAL_DAMPING = {"Nms/rad": 1.0, "Nmms/rad": 0.001, "lbf ft s/rad": LBF * FT
 FREQUENCY = {"rad/s": 1.0, "Hz": 2.0 * math.pi, "rpm": 2.0 * math.pi / 60.0}
 SPEED = {"m/s": 1.0, "km/h": 1.0 / 3.6, "mm/s": 0.001, "ft/s": FT, "mph": 1609.344 / 3600.0}
 TIME = {"s": 1.0, "ms": 0.001}
+PRESSURE = {"Pa": 1.0, "kPa": 1000.0, "MPa": 1e6, "bar": 1e5, "N/m^2": 1.0, "kN/m^2": 1000.0,
+            "N/mm^2": 1e6, "psi": PSI, "lbf/in^2": PSI, "ksi": 1000.0 * PSI}
+AREA = {"m^2": 1.0, "cm^2": 1e-4, "mm^2": 1e-6, "in^2": INCH ** 2, "ft^2": FT ** 2}
 
 # one turn in each angle unit that has an exact float value; radians are not reduced
 # (NumPy's sin and cos reduce a float in radians exactly)
@@ -63,12 +68,27 @@ KINDS = {
     "frequency": FREQUENCY,
     "speed": SPEED,
     "time": TIME,
+    "pressure": PRESSURE,
+    "area": AREA,
 }
 
 DEFAULTS = {"length": "mm", "angle": "deg", "force": "N", "torque": "Nm",
             "mass": "kg", "inertia": "kg m^2", "stiffness": "N/m",
             "torsional_stiffness": "Nm/rad", "damping": "Ns/m", "torsional_damping": "Nms/rad",
             "frequency": "rad/s", "speed": "m/s", "time": "s"}
+# without a declaration, a pressure is in force per length squared and an area in length
+# squared of the file's own units (N and mm: N/mm^2 and mm^2)
+DERIVED = {"pressure": ("force", "length", 2), "area": (None, "length", 2)}
+
+
+def _other_kind(name, kind) -> str:
+    """': that is a unit of force, not of pressure' when ``name`` is another kind's unit."""
+    others = [k for k, table in KINDS.items() if k != kind and isinstance(name, str)
+              and name in table]
+    if not others:
+        return ""
+    what = " or ".join(o.replace("_", " ") for o in others)
+    return f": that is a unit of {what}, not of {kind.replace('_', ' ')}"
 
 
 class Units:
@@ -83,14 +103,32 @@ class Units:
                 raise InputError(f"unknown unit kind '{kind}'", key=f"units.{kind}",
                                  hint="use one of " + ", ".join(KINDS))
             if not isinstance(name, str) or name not in table:
-                raise InputError(f"unknown {kind} unit '{name}'", key=f"units.{kind}",
-                                 hint="use one of " + ", ".join(table))
+                raise InputError(f"unknown {kind} unit '{name}'{_other_kind(name, kind)}",
+                                 key=f"units.{kind}", hint="use one of " + ", ".join(table))
             self.names[kind] = name
         self.names.setdefault("angular_rate", self.names["angle"] + "/s")
+        self.derived = {}
+        for kind, (over, base, power) in DERIVED.items():
+            if kind not in self.names:
+                self._derive(kind, over, base, power)
+
+    def _derive(self, kind, over, base, power):
+        """The default unit of ``kind``: the file's ``over`` unit per (or, without ``over``,
+        times) its ``base`` unit to ``power``, by name from the table when listed there."""
+        name = f"{self.names[base]}^{power}"
+        factor = KINDS[base][self.names[base]] ** power
+        if over is not None:
+            name = f"{self.names[over]}/{name}"
+            factor = KINDS[over][self.names[over]] / factor
+        self.names[kind] = name
+        if name not in KINDS[kind]:
+            self.derived[kind] = factor
 
     def factor(self, kind: str) -> float:
         """SI value of one file unit of ``kind``."""
-        return KINDS[kind][self.names[kind]]
+        name = self.names[kind]
+        table = KINDS[kind]
+        return table[name] if name in table else self.derived[kind]
 
     def angle_to_si(self, value: float) -> float:
         """An angle in the file's unit, in radians.  A huge angle in degrees is first

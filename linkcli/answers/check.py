@@ -7,15 +7,21 @@ of the mantissa less the exponent (``3.35e3`` is printed to tens).  Printed
 values marked ``wrong`` in the file are reported as known key problems, never
 as failures; keys of the rates of loads are refused (loads are solved, their
 rates are not).
+
+A key may widen the agreement with a tolerance (the key's ``tolerance`` for all
+its values, ``tolerances`` for one): ``|computed - printed| <= t`` for an
+absolute ``t`` in the value's display unit, ``<= t |printed|`` for a
+percentage, a point's x and y each on its own.  A value that agrees only
+within the tolerance passes, and its outcome says so (``within``).
 """
 from __future__ import annotations
 
-import math
 import os
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from linkcli.answers.quantities import angle_period
 from linkcli.answers.sheet import evaluate
 from linkcli.answers.sweep import load_rate_error
 from linkcli.errors import LinkcliError
@@ -35,6 +41,8 @@ class Outcome:
     computed: str
     status: str            # 'pass' | 'fail' | 'known'
     reason: str = ""
+    tolerance: str = ""    # the tolerance of the key entry, with its unit ('2%', '0.05 ft/s')
+    within: bool = False   # passed within the tolerance, not at the printed precision
 
 
 @dataclass
@@ -47,12 +55,28 @@ class FileReport:
     def count(self, status):
         return sum(o.status == status for o in self.outcomes)
 
+    def count_within(self) -> int:
+        return sum(o.status == "pass" and o.within for o in self.outcomes)
+
 
 def agrees(computed: float, printed: float, decimals: int, period: float | None) -> bool:
     diff = computed - printed
     if period:
         diff = (diff + period / 2) % period - period / 2
     return abs(diff) <= 0.5 * 10.0 ** -decimals + ROUND_SLACK * max(1.0, abs(printed))
+
+
+def within(computed: float, printed: float, tolerance, period: float | None) -> bool:
+    """Whether ``computed`` lies within ``tolerance`` (a model Tolerance) of ``printed``:
+    ``|computed - printed| <= t`` (absolute, display unit) or ``<= t |printed|``
+    (relative); angles compared modulo a full turn."""
+    if tolerance is None:
+        return False
+    diff = computed - printed
+    if period:
+        diff = (diff + period / 2) % period - period / 2
+    bound = tolerance.value * abs(printed) if tolerance.relative else tolerance.value
+    return abs(diff) <= bound * (1.0 + ROUND_SLACK) + ROUND_SLACK * max(1.0, abs(printed))
 
 
 def collect(paths) -> list[str]:
@@ -146,20 +170,42 @@ def _check_key(mech, entries, solved=None) -> list[Outcome]:
     for entry in entries:
         decimals = _precision(entry)
         shown = max(decimals, 1) if entry.value is None or entry.wrong else max(decimals, 0)
+        tolerance = entry.tolerance
         if _is_point(mech, entry):
             computed = [float(result.values["x" + entry.name]), float(result.values["y" + entry.name])]
-            ok = entry.value is not None and all(
-                agrees(c, p, decimals, None) for c, p in zip(computed, entry.value))
-            text = "(" + ", ".join(f"{c:.{shown}f}" for c in computed) + ")"
+            unit = result.units["x" + entry.name]
+            printed = entry.value if entry.value is not None else (None, None)
+            exact = [p is not None and agrees(c, p, decimals, None)
+                     for c, p in zip(computed, printed)]
+            near = [p is not None and within(c, p, tolerance, None)
+                    for c, p in zip(computed, printed)]
         else:
-            computed = float(np.asarray(result.values[entry.name]))
-            period = _period(mech, entry.name, result.units[entry.name])
-            ok = entry.value is not None and agrees(computed, entry.value, decimals, period)
-            text = f"{computed:.{shown}f}"
+            computed = [float(np.asarray(result.values[entry.name]))]
+            unit = result.units[entry.name]
+            period = angle_period(mech, entry.name, unit)
+            exact = [entry.value is not None and agrees(computed[0], entry.value, decimals,
+                                                        period)]
+            near = [entry.value is not None and within(computed[0], entry.value, tolerance,
+                                                       period)]
+        ok = all(e or n for e, n in zip(exact, near))
+        widened = ok and not all(exact)
+        digits = shown + 1 if widened else shown
+        texts = [f"{c:.{digits}f}" for c in computed]
+        text = "(" + ", ".join(texts) + ")" if len(texts) == 2 else texts[0]
         status = "known" if entry.wrong else ("pass" if ok else "fail")
         out.append(Outcome(mech.file, mech.k, entry.name, entry.printed, text, status,
-                           entry.wrong or ""))
+                           entry.wrong or "", _tolerance_text(tolerance, unit),
+                           widened and not entry.wrong))
     return out
+
+
+def _tolerance_text(tolerance, unit: str) -> str:
+    """'2%', '0.05 ft/s' (an absolute tolerance with the value's display unit), or ''."""
+    if tolerance is None:
+        return ""
+    if tolerance.relative or not unit or unit == "-":
+        return tolerance.text
+    return f"{tolerance.text} {unit}"
 
 
 def _precision(entry) -> int:
@@ -194,15 +240,6 @@ def _is_point(mech, entry) -> bool:
     return entry.value is None and entry.name in mech.points and entry.name not in mech.quantities
 
 
-def _period(mech, name, unit) -> float | None:
-    base, order = split_rate(name)
-    quantity = mech.quantities[base]
-    is_angle = quantity.kind == "angle" or (quantity.kind == "q" and mech.driver.kind == "angle")
-    if order or not is_angle:
-        return None
-    return 360.0 if unit == "deg" else 2 * math.pi
-
-
 def summary_lines(reports: list[FileReport], verbose: bool = False) -> tuple[list[str], bool]:
     lines = []
     passed = failed = known = nokey = errors = 0
@@ -218,17 +255,21 @@ def summary_lines(reports: list[FileReport], verbose: bool = False) -> tuple[lis
             k = "-" if o.k is None else o.k
             if o.status == "fail":
                 lines.append(f"FAIL {o.file} k={k} {o.name}: printed {o.printed}, "
-                             f"computed {o.computed}")
+                             f"computed {o.computed}" + (f" (not within {o.tolerance})"
+                                                         if o.tolerance else ""))
             elif o.status == "known":
                 lines.append(f"KNOWN {o.file} k={k} {o.name}: printed {o.printed}, "
                              f"computed {o.computed} ({o.reason})")
             elif verbose:
-                lines.append(f"ok {o.file} k={k} {o.name}: {o.printed}")
+                lines.append(f"ok {o.file} k={k} {o.name}: {o.printed}" + (
+                    f" (computed {o.computed}, within {o.tolerance})" if o.within else ""))
         p, f, kn = rep.count("pass"), rep.count("fail"), rep.count("known")
+        near = rep.count_within()
         passed, failed, known = passed + p, failed + f, known + kn
         if rep.keys:
-            lines.append(f"{rep.file}: {p} passed, {f} failed" + (f", {kn} known key problems"
-                                                                    if kn else ""))
+            lines.append(f"{rep.file}: {p} passed" + (f" ({near} within tolerance)" if near
+                                                       else "") + f", {f} failed" +
+                         (f", {kn} known key problems" if kn else ""))
     lines.append(f"{known} known key problems, {nokey} files without key, {errors} files with "
                  "errors")
     lines.append(f"{passed} passed, {failed + errors} failed")

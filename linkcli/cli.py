@@ -246,15 +246,21 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions):
 @cli.command()
 @click.argument("file")
 @K_OPTION
+@click.option("--pseudocode", is_flag=True,
+              help="Print the solving order as pseudo-MATLAB calls of the dyad functions.")
 @click.option("-o", "--output", default=None, help="Write to this file instead of stdout.")
-def explain(file, k, output):
+def explain(file, k, pseudocode, output):
     """Print Grübler's count, the Assur decomposition and the solving order.
 
     \b
-    Example:
+    Examples:
       linkcli explain mechanisms/padova-2020-07.yaml
+      linkcli explain mechanisms/padova-2020-07.yaml --pseudocode
     """
-    from linkcli.answers.explain import explain as text
+    if pseudocode:
+        from linkcli.answers.pseudocode import pseudocode as text
+    else:
+        from linkcli.answers.explain import explain as text
     _not_an_input(output, file)
     _emit(text(_load(file, k)), output)
 
@@ -376,8 +382,9 @@ def plot(file, sweep, frf, modes, free, names, k, output):
     _not_an_input(output, file)
     mech = _load(file, k)
     if sweep:
+        from linkcli.answers.limits import sweep_names
         from linkcli.pictures.plotting import plot as make
-        make(mech, sweep, list(names), output)
+        make(mech, sweep, sweep_names(mech, list(names), key="--y"), output)
         return
     from linkcli.pictures import vibration as pictures
     if frf:
@@ -551,6 +558,8 @@ def sweep(file, start, stop, steps, step, form, every, names, decimals, method, 
     mech = _load(file, k)
     q = sweep_mod.driver_range(start, stop, steps, step)
     chosen = [n.strip() for n in names.split(",") if n.strip()] if names else None
+    from linkcli.answers.limits import sweep_names
+    chosen = sweep_names(mech, chosen)      # maxima, strokes ... are not functions of q
     sweep_mod.check_every(every)
     sweeper = sweep_mod.Sweeper(mech, q, chosen, method=method, tol=_tol(tol))
     opened = []
@@ -574,6 +583,44 @@ def sweep(file, start, stop, steps, step, form, every, names, decimals, method, 
             handle.close()
     for issue in issues:
         _echo(issue.text(), err=True, prefix="linkcli: ")
+
+
+@cli.command()
+@click.argument("file")
+@click.option("--of", "names", multiple=True,
+              help="A quantity (repeat the option for several) [default: the report's].")
+@click.option("--from", "start", type=float, default=None,
+              help="First driver value [default: a full turn of a crank].")
+@click.option("--to", "stop", type=float, default=None, help="Last driver value.")
+@click.option("--format", "form", type=click.Choice(["table", "json", "csv"]), default="table",
+              show_default=True)
+@click.option("--decimals", type=click.IntRange(0, 12), default=None,
+              help="Decimals shown (default: the file's report.decimals, else 1).")
+@K_OPTION
+@click.option("-o", "--output", default=None, help="Write to this file instead of stdout.")
+def limits(file, names, start, stop, form, decimals, k, output):
+    """Limit positions and extremes of quantities over the driver's range.
+
+    Each quantity's maxima and minima (where its rate is zero, to 1e-10 of the
+    driver's unit), its stroke, and over a crank's full turn the time ratio and
+    the working and return strokes (driver sweep, time at the driver's rate).
+
+    \b
+    Examples:
+      linkcli limits mechanisms/khurmi-5-2-quick-return.yaml
+      linkcli limits mechanisms/polimi-crank-slider.yaml --of c --of cdot
+      linkcli limits mechanisms/khurmi-15-3-max-piston-velocity.yaml --of vP --from 0 --to 180
+    """
+    from linkcli.answers import limits as limits_mod
+    _not_an_input(output, file)
+    mech = _load(file, k)
+    decimals = mech.report.get("decimals", 1) if decimals is None else decimals
+    found = [limits_mod.find(mech, name, start, stop)
+             for name in (names or limits_mod.default_names(mech))]
+    _emit(limits_mod.render(found, form, decimals), output)
+    if form != "json":
+        for text in limits_mod.messages(found):
+            _echo(text, err=True, prefix="linkcli: ")
 
 
 GLOBAL_FLAGS = ("--quiet", "--traceback")

@@ -129,6 +129,13 @@ _ALWAYS_LOADER = [           # messages of rules that need the rest of the file
     r"^name '.*' is already",
     r"is not a fixed point",
     r"^no link carries both",
+    r"^no link, slider block or actuator carries both",
+    r"^the figure puts .* which should pass through it$",
+    r"cannot run on a guide of its own points",
+    r"run on each other in a ring$",
+    r"^a guide along an actuator is its line",
+    r"^a block on the line of actuator .* carries no other points$",
+    r"^the frame needs at least one fixed point",   # when its only point does not read
     r"^on a moving guide give",
     r"^exactly one load must be unknown",
     r"^only forces have x and y components",
@@ -141,6 +148,12 @@ _ALWAYS_LOADER = [           # messages of rules that need the rest of the file
     r"^these distances do not close a triangle",
     r"^points .* of the link coincide",
     r"^the first two points coincide",
+    r"runs on a guide carried by .*: a pressure acts on a piston",
+    r"^the force p A is not a finite number",
+    r"^the extremes of '.*' are where its rate is zero",
+    r"is of a position quantity",
+    r"needs a driver: a vibration problem has coordinates",
+    r"^the range goes up",
 ]
 _VALUE_RULES = [             # loader-only when the value is an expression (text)
     r"in expression '", r"^cannot parse expression", r"^'.*' is too small",

@@ -9,12 +9,16 @@ from __future__ import annotations
 from linkcli.answers import quantities
 from linkcli.answers.quantities import Result
 from linkcli.errors import InputError
+from linkcli.model.mechanism import LIMITS
 
 
 def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
              tol=None) -> Result:
     """Every name of ``names`` (default: the report's) in its display unit."""
     if mech.elements is None:       # a file with a driver: no vibration modules to import
+        if _asks_limits(mech, names):   # maxima, strokes ...: answers.limits
+            from linkcli.answers import limits
+            return limits.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
         return quantities.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
     from linkcli.answers import vibration
     if q is not None or qdot is not None or qddot is not None or method != "closed":
@@ -23,3 +27,9 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
                          hint="drop q, qdot, qddot and --method")
     names = list(names) if names is not None else quantities.report_names(mech)
     return vibration.evaluate(mech, names, Result(mech))
+
+
+def _asks_limits(mech, names) -> bool:
+    """Whether ``names`` (default: the report's) hold a limit of the motion."""
+    names = quantities.report_names(mech) if names is None else names
+    return any(getattr(mech.quantities.get(n), "kind", None) in LIMITS for n in names)

@@ -3,8 +3,11 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 
-from linkcli.model.mechanism import FRAME, VIBRATION, AnswerKey, KeyEntry, Quantity, split_rate
+from linkcli.model.mechanism import (FRAME, LIMITS, VIBRATION, AnswerKey, KeyEntry, Quantity,
+                                      limit_refusal, split_rate)
+from linkcli.model.mechanism import Tolerance
 from linkcli.model.units import ANGLE, FORCE, FREQUENCY, LENGTH, TORQUE
 
 SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration", "points")
@@ -25,6 +28,8 @@ LEVEL = {"speed": 1, "relative_speed": 1, "acceleration": 2, "tangential_acceler
          "normal_acceleration": 2, "relative_acceleration": 2}
 #: quantities of the position alone, listed with the positions or the velocities
 EITHER = ("instant_centre", "instant_centre_distance", "velocity_ratio")
+#: the limits of the motion that are of a position quantity (its dead centres)
+STROKES = ("stroke", "time_ratio", "stroke_time")
 #: forces, listed with the statics
 FORCES = ("load", "reaction", "slider_force")
 #: the quantities a velocity ratio may be of: those whose rate is linear in the velocities
@@ -32,6 +37,8 @@ RATIO_OF = ("q", "x", "y", "angle", "length", "along", "normal_to", "relative", 
             "between")
 RATES = (0, 1, 2)
 SUFFIX = ("", "dot", "ddot")
+#: a relative tolerance as written: a percentage of at most 6 + 6 digits ('2%', '0.5 %')
+TOLERANCE_PERCENT = re.compile(r"^([0-9]{1,6}(\.[0-9]{1,6})?) ?%$")
 
 
 class _Names:
@@ -113,7 +120,65 @@ class AnswersSection:
             if q.kind == "velocity_ratio" and not self.block(self.ratio_of, q, quantities):
                 del quantities[name]
                 self.failed.add(name)
+        for name, q in list(quantities.items()):
+            if q.kind in LIMITS and not self.block(self.limit_of, q, quantities):
+                del quantities[name]
+                self.failed.add(name)
         return quantities
+
+    def limit_quantity(self, name, value, path) -> Quantity:
+        """A limit of the motion of a quantity over a range of the driver (answers.limits):
+        {maximum: NAME}, minimum, at_maximum, at_minimum, stroke, time_ratio, or
+        {stroke_time: NAME, component: working | return}; from: and to: give the range."""
+        value = self.mapping(value, path, set(LIMITS) | {"component", "from", "to"})
+        kinds = [k for k in LIMITS if k in value]
+        if len(kinds) != 1:
+            raise self.error(path, f"give exactly one kind of limit, not {' and '.join(kinds)}",
+                             hint="see docs/schema.md, 'Limits of the motion'")
+        kind = kinds[0]
+        if self.vibration.get("coordinates"):
+            raise self.error(path, f"{kind} needs a driver: a vibration problem has "
+                             "coordinates instead")
+        of = self.name(value[kind], path + (kind,), what="quantity")
+        component = value.get("component")
+        if kind == "stroke_time":
+            if component not in ("working", "return"):
+                raise self.error(path + ("component",), "component is working or return, got "
+                                 f"{component!r}", hint="the working stroke is the longer one")
+        elif "component" in value:
+            raise self.error(path + ("component",), f"a {kind} quantity has no component")
+        span = None
+        if "from" in value or "to" in value:
+            if not ("from" in value and "to" in value):
+                raise self.error(path, "give both 'from' and 'to' (the range of the driver)")
+            span = (self.number(value["from"], path + ("from",)),
+                    self.number(value["to"], path + ("to",)))
+            if not span[0] < span[1]:
+                raise self.error(path + ("to",), f"the range goes up: 'to' ({span[1]:g}) must "
+                                 f"be larger than 'from' ({span[0]:g})")
+        return Quantity(name, kind, of, component=component, span=span,
+                        line=self.doc.line(path))
+
+    def limit_of(self, q, quantities) -> bool:
+        """Whether the quantity a limit is of is defined and has a rate (its definition's
+        own error is reported already when it failed)."""
+        path = ("quantities", q.name, q.kind)
+        base, order = split_rate(q.a)
+        if base in self.failed:
+            return False
+        if base not in quantities:
+            raise self.error(path, f"'{q.a}' is not a defined quantity",
+                             hint="a limit is of a quantity NAME of the file or its rate "
+                             "NAMEdot, e.g. xB or xBdot")
+        refusal = limit_refusal(q.a, quantities[base], order)
+        if refusal:
+            raise self.error(path, refusal, hint="ask for a position or velocity quantity: a "
+                             "coordinate, an angle, a speed, or the rate of one, e.g. xBdot")
+        if q.kind in STROKES and (order or quantities[base].kind in LEVEL):
+            raise self.error(path, f"a {q.kind.replace('_', ' ')} is of a position quantity "
+                             f"(a coordinate, an angle, a length), and '{q.a}' is a velocity",
+                             hint=f"ask for its maximum and minimum: {{maximum: {q.a}}}")
+        return True
 
     def ratio_of(self, q, quantities) -> bool:
         """Whether the quantity a velocity ratio is of is one whose rate is linear in the
@@ -157,6 +222,8 @@ class AnswersSection:
                              hint="rates are named automatically: phi1 -> phi1dot, phi1ddot")
         if isinstance(value, dict) and any(k in value for k in VIBRATION):
             return self.vibration_quantity(name, value, path, pool)
+        if isinstance(value, dict) and any(k in value for k in LIMITS):
+            return self.limit_quantity(name, value, path)
         value = self.mapping(value, path, set(GEOMETRY) | {"component", "unit", "point",
                                                            "signed"})
         kinds = [k for k in GEOMETRY if k in value]
@@ -444,6 +511,8 @@ class AnswersSection:
                 raise self.error(path, f"'{name}' is not a load", hint="statics lists loads")
             return True
         quantity = quantities.get(base[0]) if base is not None else None
+        if quantity is not None and quantity.kind in LIMITS and base[1] == 0:
+            return True             # one value for the range: any kinematic section
         if quantity is None or quantity.kind == "load" or (
                 base[1] != order and quantity.kind not in LEVEL and quantity.kind not in EITHER
                 and quantity.kind not in FORCES):
@@ -490,7 +559,8 @@ class AnswersSection:
         return tuple(keys)
 
     def key(self, item, path, quantities, pool) -> AnswerKey:
-        item = self.mapping(item, path, {"k", "values", "wrong", "source"}, ("values",))
+        item = self.mapping(item, path, {"k", "values", "wrong", "source", "tolerance",
+                                         "tolerances"}, ("values",))
         k = item.get("k")
         if k is not None and (isinstance(k, bool) or not isinstance(k, int) or not 0 <= k <= 9):
             raise self.error(path + ("k",), f"k must be a digit 0-9, got {k!r}")
@@ -499,14 +569,46 @@ class AnswersSection:
         for name in wrong:
             if name not in values:
                 self.error(path + ("wrong", name), f"'{name}' has no printed value in this key")
+        tolerances = self.key_tolerances(item, path, values)
         entries = []
         for name, printed in values.items():
             vpath = path + ("values", name)
             entry = self.block(self.key_entry, name, printed, vpath, quantities, pool,
                                wrong.get(name))
             if entry is not None:
-                entries.append(entry)
+                entries.append(dataclasses.replace(entry, tolerance=tolerances.get(name)))
         return AnswerKey(k, tuple(entries))
+
+    def key_tolerances(self, item, path, values) -> dict:
+        """Each printed value's tolerance: its own under ``tolerances``, else the key's
+        ``tolerance`` (for every value of the key), else none."""
+        default = None
+        if "tolerance" in item:
+            default = self.block(self.tolerance, item["tolerance"], path + ("tolerance",))
+        own = self.block(self.mapping, item.get("tolerances") or {}, path + ("tolerances",))
+        result = {name: default for name in values}
+        for name, value in (own or {}).items():
+            if name not in values:
+                self.error(path + ("tolerances", name),
+                           f"'{name}' has no printed value in this key")
+                continue
+            result[name] = self.block(self.tolerance, value, path + ("tolerances", name))
+        return result
+
+    def tolerance(self, value, path) -> Tolerance:
+        """A tolerance: a number >= 0 (absolute, in the value's display unit) or a
+        percentage of the printed value ('2%', '0.5 %')."""
+        match = TOLERANCE_PERCENT.search(value) if isinstance(value, str) else None
+        if match:
+            return Tolerance(float(match.group(1)) / 100.0, True, match.group(1) + "%")
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise self.error(path, f"a tolerance is a number (absolute, in the value's display "
+                             f"unit) or a percentage, got {value!r}",
+                             hint="write e.g. 'tolerance: 2%' or 'tolerance: 0.05'")
+        number = self.number(value, path)
+        if number < 0:
+            raise self.error(path, f"a tolerance is at least 0, got {value!r}")
+        return Tolerance(number, False, str(self.doc.raw.get(path, value)))
 
     def key_entry(self, name, printed, path, quantities, pool, wrong) -> KeyEntry:
         line = self.doc.line(path)

@@ -23,6 +23,11 @@ class Guide:
     ``B`` and ``C`` are two points of the ``carrier`` body (virtual fixed
     points for a line of the frame) and ``c`` is constant because the carrier
     is rigid.  Its direction is from ``B`` to ``C``.
+
+    The carrier is the frame, a link, another slider's block (a slot cut in the
+    block, as in a Scotch yoke) or an actuator's cylinder (``NAME.cylinder``: the
+    line through the actuator's two points, whose distance changes, so its
+    offset is 0 and its block carries no other point).
     """
 
     carrier: str          # body name, FRAME for a fixed line
@@ -169,7 +174,9 @@ class Quantity:
     - 'reaction': the force of the pin at point ``a`` on body ``b`` (``of``: its kind,
       or 'frame'), ``component`` x, y or magnitude; 'slider_force' of slider ``a``,
       ``component`` normal or friction;
-    - 'velocity_ratio': d(a)/dq of the quantity named ``a``.
+    - 'velocity_ratio': d(a)/dq of the quantity named ``a``;
+    - the limits of the motion (kinds in LIMITS) of the quantity named ``a`` over the
+      driver range ``span``.
 
     ``signed`` prints an angle in (-180, 180] instead of [0, 360); ``line`` is where
     the file defines the quantity, for errors found when it is evaluated.
@@ -188,6 +195,7 @@ class Quantity:
     of: str | None = None
     signed: bool = False
     line: int | None = field(default=None, compare=False)
+    span: tuple | None = None      # a limit's driver range (from, to), display units
 
     @property
     def rates(self) -> int:
@@ -203,6 +211,12 @@ class Quantity:
         return self.kind in ("angle", "rotation", "between")
 
 
+#: quantity kinds of the limits of the motion (answers.limits): one value for a range of the
+#: driver, of the quantity named ``a`` (a name or a rate's name, e.g. xB or xBdot); ``component``
+#: is 'working' or 'return' for a stroke time, ``span`` the range (None: the default one)
+LIMITS = ("maximum", "minimum", "at_maximum", "at_minimum", "stroke", "time_ratio",
+          "stroke_time")
+
 #: the report's sections of named quantities, in the order of the answer sheet
 REPORT_SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration")
 
@@ -211,6 +225,17 @@ VIBRATION = ("natural_frequency", "damped_frequency", "damping_ratio", "mode_sha
              "mass_matrix", "stiffness_matrix", "damping_matrix", "equilibrium",
              "spring_force", "amplitude", "phase", "transmissibility", "force_amplitude",
              "free_response", "forcing_frequency")
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """How far a computed value may lie from a printed one and still agree with it:
+    ``|computed - printed| <= value`` in the value's display unit, or, ``relative``,
+    ``<= value |printed|`` (``value`` a fraction: 0.02 for '2%'); ``text`` as written."""
+
+    value: float
+    relative: bool
+    text: str
 
 
 @dataclass(frozen=True)
@@ -223,6 +248,7 @@ class KeyEntry:
     decimals: int
     wrong: str | None = None   # reason, when the printed value is a known key problem
     line: int | None = None
+    tolerance: Tolerance | None = None   # None: agreement at the printed precision only
 
 
 @dataclass(frozen=True)
@@ -301,3 +327,20 @@ def split_rate(name: str):
     if name.endswith("dot") and len(name) > 3:
         return name[:-3], 1
     return name, 0
+
+
+def limit_refusal(name: str, quantity: Quantity, order: int) -> str | None:
+    """Why the extremes of ``name`` (``quantity``'s rate of ``order``) cannot be found from a
+    zero of its rate, or None when they can: it needs a rate the solver computes."""
+    if order < quantity.rates:
+        return None
+    if quantity.kind in LIMITS:
+        what = "a limit of the motion itself (one value for the whole range)"
+    elif order == 2 or quantity.kind in ("acceleration", "tangential_acceleration",
+                                         "normal_acceleration", "relative_acceleration") \
+            or (order == 1 and quantity.kind in ("speed", "relative_speed")):
+        what = "an acceleration, whose rate (the jerk) is not computed"
+    else:
+        words = quantity.kind.replace("_", " ")
+        what = ("an " if words[0] in "aeiou" else "a ") + words + ", which has no rate"
+    return f"the extremes of '{name}' are where its rate is zero, and '{name}' is {what}"

@@ -16,7 +16,7 @@ import tempfile
 
 import numpy as np
 
-from linkcli.answers.quantities import report_names, require_driver
+from linkcli.answers.quantities import angle_period, report_names, require_driver
 from linkcli.answers.sweep import listing
 from linkcli.answers.sheet import evaluate
 from linkcli.pictures.drawing import (COLORS, draw_elements, draw_loads, draw_masses,
@@ -218,12 +218,9 @@ def _panel(ax, mech, q, result, name, color):
 
 def _continuous(mech, name, y, unit):
     """Angles without the jumps of [0, 360): unwrapped, then shifted to a mean in [-180, 180)."""
-    base, order = split_rate(name)
-    quantity = mech.quantities[base]
-    is_angle = quantity.kind == "angle" or (quantity.kind == "q" and mech.driver.kind == "angle")
-    if order or not is_angle or y.size < 2:
+    period = angle_period(mech, name, unit)
+    if period is None or y.size < 2:
         return y
-    period = 360.0 if unit == "deg" else 2 * math.pi
     y = np.unwrap(y, period=period)
     return y - period * np.floor(np.mean(y) / period + 0.5)
 

@@ -90,6 +90,18 @@ class SingularError(SolveError):
         self.measure = measure
 
 
+class AtRestError(SingularError):
+    """A friction whose sense is unknown at some driver values: its pair is at rest there
+    (a slider that stops, a pin whose bodies do not turn relative to each other, a disc that
+    does not roll).  ``rows`` marks them, ``what`` names the friction, ``measure`` is the
+    relative rate as a fraction of the mechanism's largest."""
+
+    def __init__(self, detail: str, *, what: str = "", rows=None, **kw):
+        super().__init__(detail, **kw)
+        self.what = what
+        self.rows = rows
+
+
 class NoWorkError(SingularError):
     """The unknown load does no work at some driver values (a dead centre for it):
     ``rows`` marks them, ``measure`` is the smallest normalised coefficient ratio."""

@@ -304,6 +304,27 @@ def test_power_balance_with_friction_circles_and_a_pressure(q):
     assert abs(residual) <= 1e-9 * abs(terms["motor"])
 
 
+def test_the_reactions_table_shows_each_friction_couple():
+    """The --reactions rows of each pin: M = -rho sgn(omega_rel) |R| on the turning body
+    and its opposite on the holder, |M| = rho |F| on both rows of the pin."""
+    from linkcli.answers import reaction_table
+    mech = engine("F: {type: force, at: B, x: -800}", f"  friction_circles: {RHO}")
+    kin, _ = state(mech.model)
+    reactions = joint_forces.solve(mech.model, kin)
+    pins = mech.model.dynamics.pins
+    moments = {}
+    for name, fx, fy, size, along, normal, *moment in reaction_table.rows(reactions):
+        if name.split(" on ")[0] in pins:          # a pin's row, not a sliding pair's
+            pin, body = name.split(" on ")[0], name.split()[-1]
+            moments.setdefault(pin, {})[body] = moment[0]
+            if body == pins[pin].other:     # the force on the turning body sets |M|
+                assert abs(moment[0]) == pytest.approx(RHO * size, rel=1e-12), name
+    assert sorted(moments) == ["A", "B", "O"]
+    for pin, pair in moments.items():
+        assert set(pair) == {pins[pin].other, pins[pin].holder}
+        assert pair[pins[pin].other] == pytest.approx(-pair[pins[pin].holder], rel=1e-12), pin
+
+
 def test_friction_circles_and_slider_friction_together_balance_power():
     mech = engine("F: {type: force, at: B, x: -800}", f"  friction_circles: {RHO}\n"
                   "  friction: {slide: 0.2}")
@@ -333,6 +354,41 @@ def test_a_pin_that_does_not_turn_has_no_sense_of_friction():
     at_rest = engine("F: {type: force, at: B, x: -800}", f"  friction_circles: {RHO}")
     with pytest.raises(SolveError, match="give the driver a rate"):
         at_rest.solve(q=50.0, qdot=0.0, names=["T"])
+
+
+def test_a_slider_at_its_dead_centre_has_no_sense_of_friction():
+    """The piston stops at the crank's 0 and 180 deg: Coulomb friction there lies anywhere
+    in [-f N, f N], and the answer is refused rather than given for one sense."""
+    mech = engine("F: {type: force, at: B, x: -800}", "  friction: {slide: 0.1}")
+    with pytest.raises(SolveError, match=r"the friction at slider slide is undetermined at "
+                       r"q = 180 deg: it does not slide there"):
+        mech.solve(q=180.0, names=["T"])
+    assert np.isfinite(mech.solve(q=179.0, names=["T"]).values["T"])
+
+
+@pytest.mark.parametrize("losses, left_out", [
+    ("  friction: {slide: 0.1}", {0.0: "slider slide", 180.0: "slider slide",
+                                   360.0: "slider slide"}),
+    (f"  friction_circles: {RHO}", {90.0: "pin B", 270.0: "pin B"}),
+    (f"  friction: {{slide: 0.1}}\n  friction_circles: {RHO}",
+     {0.0: "slider slide", 90.0: "pin B", 180.0: "slider slide", 270.0: "pin B",
+      360.0: "slider slide"}),
+])
+def test_a_sweep_leaves_out_the_rows_where_a_pair_is_at_rest(losses, left_out):
+    """Each row where a friction has no sense is left out and named; the other rows are the
+    values of each position solved alone."""
+    from linkcli.answers.sweep import sweep
+    mech = engine("F: {type: force, at: B, x: -800}", losses)
+    q = np.linspace(0.0, 360.0, 17)
+    got = sweep(mech.model, q, names=["T"])
+    named = {i.lo: i.group for i in got.issues}
+    assert {k: v.rsplit(" ", 2)[-2] + " " + v.rsplit(" ", 1)[-1] for k, v in named.items()} \
+        == left_out
+    assert all(i.kind == "at-rest" for i in got.issues)
+    kept = [x for x in q if x not in left_out]
+    assert np.allclose(got.q[got.solved], kept)
+    alone = [float(mech.solve(q=x, names=["T"]).values["T"]) for x in kept]
+    assert np.allclose(got.values["T"], alone, rtol=1e-12)
 
 
 # --- Khurmi Ex. 15.7 --------------------------------------------------------------------------

@@ -21,9 +21,10 @@ from linkcli.kinematics.solvers import state
 from linkcli.model.units import FORCE, TORQUE
 
 NOTE = ("Pins: force the pin exerts on the body, in frame axes and along/normal to the "
-        "body's axis (first -> second point; the guide direction for sliders). Sliding pairs: "
-        "force of the guide on the block (along = friction T, normal = N), M its moment "
-        "about the slider point; discs: ground contact force (along the line, normal).")
+        "body's axis (first -> second point; the guide direction for sliders), M its friction "
+        "couple on the body (friction circles). Sliding pairs: force of the guide on the block "
+        "(along = friction T, normal = N), M its moment about the slider point; discs: ground "
+        "contact force (along the line, normal), M the rolling resistance couple.")
 COMPONENTS = ("Fx", "Fy", "magnitude", "along", "normal", "moment")
 
 
@@ -31,7 +32,7 @@ def rows(reactions, index=None) -> list[tuple]:
     """(name, Fx, Fy, |F|, along, normal) per pin and (..., M) per pair, in SI units at
     driver value number ``index`` (default the first)."""
     out = [_pin_row(reactions, key, force, index) for key, force in reactions.pins.items()]
-    return out + [_pair_row(name, pf, index) for name, pf in reactions.pairs.items()]
+    return out + [_pair_row(reactions, name, pf, index) for name, pf in reactions.pairs.items()]
 
 
 def _pick(value, index):
@@ -41,7 +42,9 @@ def _pick(value, index):
 
 
 def _pin_row(reactions, key, force, index) -> tuple:
-    """A pin's force on a body; along / normal to the body's axis u: F . u, F . (i u)."""
+    """A pin's force on a body; along / normal to the body's axis u: F . u, F . (i u); and
+    the friction couple of a friction circle on that body (on the holder, minus the one on
+    the turning body)."""
     p, b = key
     f = _pick(force, index)
     along = normal = None
@@ -49,18 +52,25 @@ def _pin_row(reactions, key, force, index) -> tuple:
         u = _pick(unit(dyn_mod.axis_vector(reactions.mech, b, reactions.kin.pos)), index)
         along, normal = dyn_mod.dot(u, f), dyn_mod.dot(1j * u, f)
     what = "slider " if b != FRAME and reactions.mech.bodies[b].kind == "block" else ""
-    return (f"{p} on {what}{b}", f.real, f.imag, abs(f), along, normal)
+    row = (f"{p} on {what}{b}", f.real, f.imag, abs(f), along, normal)
+    if p not in reactions.pin_couples:
+        return row
+    pin = reactions.mech.dynamics.pins[p]
+    couple = _pick(reactions.pin_couples[p], index).real
+    return row + (couple if b == pin.other else -couple if b == pin.holder else None,)
 
 
-def _pair_row(name, pf, index) -> tuple:
-    """A pair's force N n + T u, with along = T, normal = F . (i u) and M (None for discs)."""
+def _pair_row(reactions, name, pf, index) -> tuple:
+    """A pair's force N n + T u, with along = T, normal = F . (i u) and M (for a disc its
+    rolling resistance couple, None without one)."""
     u = _pick(pf.u, index)
     n_val, t_val = _pick(pf.normal, index).real, _pick(pf.friction, index).real
     force = n_val * _pick(pf.n, index) + t_val * u
     label = {"slider": f"slider {name} (guide on {pf.carrier})",
              "actuator": f"actuator {name} (rod on cylinder)",
              "disc": f"disc {name} (ground contact)"}[pf.kind]
-    moment = _pick(pf.moment, index).real if pf.kind != "disc" else None
+    moment = _pick(pf.moment, index).real if pf.kind != "disc" else \
+        _pick(reactions.resistances[name], index).real if name in reactions.resistances else None
     return (label, force.real, force.imag, abs(force), t_val, dyn_mod.dot(1j * u, force), moment)
 
 

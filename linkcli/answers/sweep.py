@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.errors import NoWorkError, AssemblyError, InputError, SolveError
+from linkcli.errors import AtRestError, NoWorkError, AssemblyError, InputError, SolveError
 from linkcli.kinematics.closed_form import SINGULAR, Kinematics
 from linkcli.kinematics.topology import Dist, Line
 from linkcli.model.mechanism import split_rate
@@ -90,6 +90,10 @@ class Issue:
         if self.kind == "no-work":
             return (f"the unknown load {self.group} does no work {where} (a dead centre for "
                     f"it: coefficient {self.amount:.1e} of the largest load's); rows left out")
+        if self.kind == "at-rest":
+            return (f"{self.group} is undetermined {where}: its pair is at rest (relative "
+                    f"rate {self.amount:.1e} of the largest), so the sense of the loss is "
+                    "unknown; rows left out")
         return (f"branch point at q = {self.lo:.6g} {self.q_unit}: {self.group} passes a toggle "
                 "(its conditioning touches 0); the sweep keeps its branch, the mechanism may "
                 "leave on either")
@@ -349,20 +353,25 @@ class Sweeper:
             return Block(q, good, {n: np.zeros(0) for n in self.names})
         if self.order >= 2:
             self.solver.accelerations(sub, self.qdd)
-        try:
-            result = self.evaluation.collect(self.mech, self.solver, sub)
-        except NoWorkError as exc:      # the unknown load at its dead centre: rows left out
-            dead = np.broadcast_to(np.asarray(exc.rows, bool), sub.q.shape)
-            alive = np.nonzero(keep)[0]
-            for a, b in _runs(dead):
-                self._add_run("no-work", -1, start + alive[a], start + alive[b],
-                              q[rows[alive[a]]], q[rows[alive[b]]], exc.measure, min)
-                self._issues[-1].group = exc.load
-            good[rows[alive[dead]]] = False
-            if dead.all():
-                return Block(q, good, {n: np.zeros(0) for n in self.names})
-            sub = _subset(sub, ~dead)
-            result = self.evaluation.collect(self.mech, self.solver, sub)
+        alive = np.nonzero(keep)[0]
+        while True:             # each pass leaves out the rows one refusal names
+            try:
+                result = self.evaluation.collect(self.mech, self.solver, sub)
+                break
+            except (NoWorkError, AtRestError) as exc:   # rows without an answer
+                dead = np.broadcast_to(np.asarray(exc.rows, bool), sub.q.shape)
+                if not dead.any():
+                    raise
+                kind, name = ("no-work", exc.load) if isinstance(exc, NoWorkError) else \
+                    ("at-rest", exc.what)
+                for a, b in _runs(dead):
+                    self._add_run(kind, -1, start + alive[a], start + alive[b],
+                                  q[rows[alive[a]]], q[rows[alive[b]]], exc.measure, min)
+                    self._issues[-1].group = name
+                good[rows[alive[dead]]] = False
+                if dead.all():
+                    return Block(q, good, {n: np.zeros(0) for n in self.names})
+                sub, alive = _subset(sub, ~dead), alive[~dead]
         self.units.update(result.units)
         self.solved_rows += int(np.count_nonzero(good))
         values = {n: np.broadcast_to(result.values[n], sub.q.shape) for n in self.names}

@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.errors import SolveError
+from linkcli.errors import AtRestError
 from linkcli.forces import motion as dyn_mod
 from linkcli.kinematics.closed_form import where_text
 from linkcli.model.mechanism import FRAME
@@ -118,10 +118,14 @@ def losses_at(mech, kin) -> Losses:
     if not out.any:
         return out
     shape = np.shape(kin.q)
+    scale, size = _largest_rate(mech, dyn, kin)
     for s in out.sliders:
-        out.sigma[("slider", s)] = np.sign(dyn_mod.sliding_velocity(mech, s, kin.pos, kin.vel))
+        v = dyn_mod.sliding_velocity(mech, s, kin.pos, kin.vel)
+        _require_motion(mech, kin, v / size, scale, f"the friction at slider {s}",
+                        "it does not slide there (v = {value:.3g} of the mechanism's size "
+                        "per second)")
+        out.sigma[("slider", s)] = np.sign(v)
         out.signs[("slider", s)] = np.ones(shape)
-    scale = _largest_rate(mech, dyn, kin) if (out.discs or out.pins) else None
     for s, disc in out.discs.items():
         omega = dyn_mod.disc_spin(mech, disc, kin.pos, kin.vel)[0]
         _require_motion(mech, kin, omega, scale, f"the rolling resistance of disc {disc.name}",
@@ -139,8 +143,8 @@ def losses_at(mech, kin) -> Losses:
 
 
 def _largest_rate(mech, dyn, kin):
-    """The mechanism's largest rate (1/s): its bodies' and discs' angular velocities and
-    its largest speed over its size, at each position."""
+    """(the mechanism's largest rate (1/s): its bodies' and discs' angular velocities and
+    its largest speed over its size, at each position; its size)."""
     pos, vel = kin.pos, kin.vel
     first = pos[mech.points[0]]
     size = max(float(np.max(np.abs(np.asarray(pos[p] - first)))) for p in mech.points) or 1.0
@@ -149,7 +153,7 @@ def _largest_rate(mech, dyn, kin):
         top = np.maximum(top, np.abs(vel.get(p, 0.0)) / size)
     for name in mech.bodies:
         top = np.maximum(top, np.abs(body_spin(mech, dyn, name, pos, vel)))
-    return top
+    return top, size
 
 
 def _require_motion(mech, kin, omega, scale, what, why):
@@ -159,11 +163,12 @@ def _require_motion(mech, kin, omega, scale, what, why):
         mask = np.broadcast_to(still, np.shape(kin.q))
         value = float(np.ravel(np.broadcast_to(omega, np.shape(kin.q))[mask])[0]) + 0.0
         ratio = abs(value) / float(np.max(scale)) if np.max(scale) > 0 else 0.0
-        raise SolveError(f"{what} is undetermined {where_text(mech, kin.q, mask)}: "
-                         + why.format(value=value) + f", {ratio:.1e} of the mechanism's "
-                         "largest rate, so the sense of the loss is unknown", file=mech.file,
-                         hint="move the driver away from that position, or give the driver "
-                         "a rate: its sign says which way the mechanism moves")
+        raise AtRestError(f"{what} is undetermined {where_text(mech, kin.q, mask)}: "
+                          + why.format(value=value) + f", {ratio:.1e} of the mechanism's "
+                          "largest rate, so the sense of the loss is unknown", file=mech.file,
+                          hint="move the driver away from that position, or give the driver "
+                          "a rate: its sign says which way the mechanism moves",
+                          what=what, rows=mask, measure=ratio, q=kin.q)
 
 
 def update(losses, normals, forces):

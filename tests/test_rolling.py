@@ -222,6 +222,8 @@ def test_belt_rates_match_differences_of_positions():
     ("along: -y", "along: y", "the cord is not taut in the figure: disc drum"),
     ("to: {disc: drum,", "to: {disc: pulley,", "a belt cannot run from a pulley to itself"),
     ("to: {disc: drum,", "to: {disc: wheel,", "undefined link 'wheel'"),
+    ("to: {disc: drum, radius: 40, side: left}", "to: [drum]",
+     "expected a point name or a disc, got ['drum']"),
 ])
 def test_bad_belts_are_located(tmp_path, capsys, old, new, message):
     assert old in BELT

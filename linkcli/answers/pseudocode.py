@@ -473,9 +473,10 @@ class _Writer:
 
     def _roll(self, group):
         r = group.constraints[0]
+        # the other disc's centre is the track; its rim mark gives its turn
         reads = [r.center] + [x for x in (r.point, r.track) if x] + (
-            [self.mech.bodies[r.other].points[0]] if r.other else [])
-        args = tuple(self.point(x) for x in reads)
+            list(self.mech.bodies[r.other].points[:2]) if r.other else [])
+        args = tuple(self.point(x) for x in dict.fromkeys(reads))
         self.emit((self.name(group.point),), f"rolling{r.kind.capitalize()}", args, args, group.kind,
                   library=False, note=f"not in the exam's library: {group.describe()}")
 

@@ -134,6 +134,10 @@ class ContactsSection:
         if isinstance(spec["to"], dict):
             return self.belt_entry(name, spec["to"], path + ("to",), units, bodies, figure,
                                    (disc, center, radius, u, side, tangent))
+        if not isinstance(spec["to"], str):
+            raise self.error(path + ("to",), f"expected a point name or a disc, got "
+                             f"{spec['to']!r}", hint="to: P, or to: {disc: D, radius: r, "
+                             "side: left} for a belt strand")
         point = self.name(spec["to"], path + ("to",), set(figure))
         self.taut(path + ("to",), figure[point] - tangent, u, radius, side, point)
         return Rolling(name, disc, center, radius, "cord", u, side, point=point)

@@ -465,14 +465,21 @@ class Solver:
         if lin is None:
             pos, p = kin.pos, group.point
             g1, g2 = (_grad(c, pos, p) for c in group.constraints)
-            det = cross(g1, g2)
+            x1, y1, x2, y2 = g1.real, g1.imag, g2.real, g2.imag
+            det = x1 * y2
+            det -= y1 * x2                  # cross(G_1, G_2), in real parts
             norms = np.abs(g1) * np.abs(g2)      # hypot: no underflow of tiny guides
-            measure = np.abs(det) / np.where(norms > 0, norms, 1.0)
+            if not _everywhere(norms > 0):
+                norms = np.where(norms > 0, norms, 1.0)
+            measure = np.abs(det)
+            measure /= norms
             if index in kin.flat:           # a toggle within rounding: singular, whatever
                 measure = np.where(kin.flat[index], 0.0, measure)   # the noise in det says
             kin.measure[index] = measure
-            inv = 1.0 / np.where(det == 0, 1.0, det)
-            lin = ((g2.imag * inv, -g2.real * inv), (-g1.imag * inv, g1.real * inv), g1, g2)
+            if _anywhere(det == 0):
+                det = np.where(det == 0, 1.0, det)
+            inv = 1.0 / det
+            lin = ((y2 * inv, -x2 * inv), (-y1 * inv, x1 * inv), g1, g2)
             kin.linear[index] = lin
         return lin
 
@@ -633,6 +640,11 @@ def _anywhere(mask) -> bool:
     return mask.any() if isinstance(mask, np.ndarray) else bool(np.any(mask))
 
 
+def _everywhere(mask) -> bool:
+    """np.all(mask), as :func:`_anywhere`."""
+    return mask.all() if isinstance(mask, np.ndarray) else bool(np.all(mask))
+
+
 def _grad(c, pos, unknown):
     """Gradient of constraint ``c`` with respect to point ``unknown`` (complex)."""
     if isinstance(c, Dist):
@@ -660,13 +672,15 @@ def _rhs(c, grad, pos, d, q, qrate, vel, qd):
     """
     if isinstance(c, Dist):           # g = |P - A|^2 - L^2, G = 2 (P - A), P unknown
         va = d.get(c.a)
-        r = 0.0 if va is None else (grad.conjugate() * va).real
+        r = 0.0 if va is None else _dot(grad, va)
         if c.length is None:
             r = r + 2.0 * q[c.coord] * qrate[c.coord]
         if vel is not None:
             dv = _delta(vel, c.p, c.a)
             if dv is not None:
-                r = r - 2.0 * (dv.real * dv.real + dv.imag * dv.imag)
+                square = _dot(dv, dv)
+                square *= 2.0
+                r = r - square
             if c.length is None:
                 r = r + 2.0 * qd[c.coord] * qd[c.coord]
         return r
@@ -685,15 +699,40 @@ def _rhs(c, grad, pos, d, q, qrate, vel, qd):
     return qrate[c.coord]             # g = x (or y) of P - q
 
 
+def _dot(a, b):
+    """Re(conj(a) b) = a_x b_x + a_y b_y, in real parts (no complex temporaries)."""
+    out = a.real * b.real
+    if isinstance(out, np.ndarray) and out.ndim:
+        out += a.imag * b.imag
+        return out
+    return out + a.imag * b.imag
+
+
 def _combine(r1, k1, r2, k2):
-    """r1 K1 + r2 K2 as a complex array, skipping terms whose r is a zero scalar."""
-    re = im = 0.0
-    for r, (kx, ky) in ((r1, k1), (r2, k2)):
-        if np.ndim(r) == 0 and r == 0:
-            continue
-        re = re + r * kx
-        im = im + r * ky
-    return dyads._complex(re, im) if np.ndim(kx) or np.ndim(re) else complex(re, im)
+    """r1 K1 + r2 K2 as a complex array, skipping terms whose r is a zero scalar; written
+    straight into the complex result (a zero is +0, as 0 + r1 K1 + r2 K2 gives)."""
+    terms = [(r, k) for r, k in ((r1, k1), (r2, k2))
+             if (r.ndim if isinstance(r, np.ndarray) else 0) or r != 0]
+    if not terms:
+        return 0j
+    (r, (kx, ky)), rest = terms[0], terms[1:]
+    shape = np.broadcast_shapes(*(np.shape(x) for t in terms for x in (t[0], t[1][0])))
+    if not shape:
+        re = im = 0.0
+        for r, (kx, ky) in terms:
+            re = re + r * kx
+            im = im + r * ky
+        return complex(re, im)
+    out = np.empty(shape, complex)
+    re, im = out.real, out.imag
+    np.multiply(r, kx, out=re)
+    np.multiply(r, ky, out=im)
+    for r, (kx, ky) in rest:
+        re += r * kx
+        im += r * ky
+    re += 0.0
+    im += 0.0
+    return out
 
 
 def residuals(solver: Solver, kin: Kinematics) -> dict:

@@ -106,27 +106,65 @@ def line_frame(b, c, value):
     return bc / n, value / n
 
 
-def circle_line(a, r, b, c, value, branch, flat=False):
+def circle_line(a, r, b, c, value, branch, flat=False, frame=None):
     """P with |P - A| = r on the line (B, C, value); branch +1 is ahead along u.
 
     P = B + i e u + (t0 + branch sqrt(r^2 - d^2)) u, with t0 the foot of A and
-    d the distance of A from the line.
+    d the distance of A from the line.  ``frame``: the line's (u, e), when known.
     """
-    u, e = line_frame(b, c, value)
-    rel = (a - b) * u.conjugate()
+    u, e = line_frame(b, c, value) if frame is None else frame
+    rel = a - b
+    if _fresh(rel, u):
+        rel *= u.conjugate()            # in place: a fresh array
+    else:
+        rel = rel * u.conjugate()
     dist = rel.imag - e
-    disc = r * r - dist * dist
-    if np.any(disc < 0):
+    disc = dist * dist
+    if _fresh(disc, r):
+        np.subtract(r * r, disc, out=disc)
+    else:
+        disc = r * r - disc
+    if _anywhere(disc < 0):
         s, gap = _root(disc, np.maximum(r * r, dist * dist))
         short = np.where(gap > 0, np.abs(dist) - r, 0.0)
     else:
         s, short = np.sqrt(disc), _no_short(disc)
-    along = rel.real + s if branch > 0 else rel.real - s
-    p = b + _complex(along, e) * u
+    if _fresh(s, rel):
+        along = np.add(rel.real, s, out=s) if branch > 0 else np.subtract(rel.real, s, out=s)
+    else:
+        along = rel.real + s if branch > 0 else rel.real - s
+    p = _complex(along, e)
+    if _fresh(p, u, b):
+        p *= u
+        p += b
+    else:
+        p = b + p * u
     if not flat:
         return p, short
-    noise = TOGGLE * (r * r + np.abs(dist) * (np.abs(a) + np.abs(b) + np.abs(e) + r))
+    # TOGGLE (r^2 + |d| (|A| + |B| + |e| + r)), the same operations in place
+    noise = np.abs(a)
+    if _fresh(noise, b, e, r, dist):
+        noise += np.abs(b)
+        noise += np.abs(e)
+        noise += r
+        noise *= np.abs(dist)
+        noise += r * r
+        noise *= TOGGLE
+    else:
+        noise = TOGGLE * (r * r + np.abs(dist) * (noise + np.abs(b) + np.abs(e) + r))
     return p, short, np.abs(disc) <= noise
+
+
+def _fresh(x, *others) -> bool:
+    """Whether ``x`` is an array that the ``others`` broadcast into (so an operation with
+    them can be written into it)."""
+    return isinstance(x, np.ndarray) and x.ndim > 0 and \
+        all(np.ndim(o) == 0 or np.shape(o) == x.shape for o in others)
+
+
+def _anywhere(mask) -> bool:
+    """np.any(mask), without its dispatch for arrays."""
+    return mask.any() if isinstance(mask, np.ndarray) else bool(np.any(mask))
 
 
 def line_line(b1, u1, e1, b2, u2, e2):

@@ -215,7 +215,7 @@ def find(mech, name, start=None, stop=None, *, qdot=None, method="closed", tol=N
     found.whole = bool(swept.solved.all())
     rows = np.nonzero(swept.solved)[0]
     values = {n: np.asarray(v, float) for n, v in swept.values.items()}
-    period = _period(quantity, order, found.unit)
+    period = quantities.angle_period(mech, name, found.unit)
     roots, levels, scales = [], [], []
     natural = _natural(mech, quantity, order, probe)
     for where, turns in _runs(rows, grid, periodic, found.whole):
@@ -242,13 +242,6 @@ def find(mech, name, start=None, stop=None, *, qdot=None, method="closed", tol=N
     found.why = "" if found.extremes else _why(found, scales)
     _strokes(found, probe)
     return found
-
-
-def _period(quantity, order, unit):
-    """A turn in the display unit of an angle that wraps (an angle's value), else None."""
-    if order or not quantity.angular:
-        return None
-    return 360.0 if unit == "deg" else 2 * math.pi
 
 
 def _runs(rows, grid, periodic, whole):

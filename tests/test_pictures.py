@@ -229,3 +229,25 @@ def test_written_pictures_are_readable_by_others(tmp_path, crank_slider):
     mask = os.umask(0)
     os.umask(mask)
     assert os.stat(out).st_mode & 0o777 == 0o666 & ~mask
+
+
+def test_discs_pulleys_and_strands_are_drawn_where_they_touch():
+    """The contact shapes of the 4 Sep 2001 file: disc 1 touches its anchored strand (a line
+    at distance r from its centre, parallel to u); the belt strand leaves both discs at
+    tangent points (at distance r from each centre, normal to the radius there)."""
+    from linkcli.kinematics.solvers import solver_for
+    from linkcli.pictures.scene import Scene, contacts
+    mech = linkcli.load(os.path.join(MECHANISMS, "polimi-2001-09-04-vibration.yaml")).model
+    kin = solver_for(mech).positions(plotting.figure_coordinates(mech))
+    shapes = contacts(Scene(mech, kin.pos))
+    assert len(shapes) == 2
+    line, belt = shapes
+    a, b = line.ground
+    u = (b - a) / abs(b - a)
+    assert abs(((line.centre - a) * u.conjugate()).imag) == pytest.approx(line.radius, rel=1e-12)
+    t2, t1 = belt.strand
+    d = (t1 - t2) / abs(t1 - t2)
+    assert abs(t2 - belt.centre) == pytest.approx(belt.radius, rel=1e-12)
+    assert abs(((t2 - belt.centre) * d.conjugate()).real) < 1e-12        # radius normal to it
+    assert abs(t1 - line.centre) == pytest.approx(line.radius, rel=1e-12)
+    assert abs(((t1 - line.centre) * d.conjugate()).real) < 1e-12

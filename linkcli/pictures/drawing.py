@@ -7,7 +7,7 @@ line widths and drawing order (``zorder``).
 from __future__ import annotations
 
 from linkcli.errors import InputError
-from linkcli.pictures.scene import (actuators, arrow_tail, axial_arrows, blocks, dashpot,
+from linkcli.pictures.scene import (actuators, arrow_tail, axial_arrows, blocks, contacts, dashpot,
                                     element_ends, ground_symbol, grounds, gravity_arrow, links,
                                     loads, mass_centres, pivots, torque_arrow, vectors, zigzag)
 
@@ -81,6 +81,7 @@ def _label(ax, z, text, offset, **style):
 # --- the mechanism --------------------------------------------------------------------------
 def draw_mechanism(ax, scene, dyn=None, labels=True, spins=None):
     """Links, actuators, sliders and discs (turned by ``spins``), grounds, pivots."""
+    _contacts(ax, scene)
     _links(ax, scene)
     _actuators(ax, scene)
     _blocks(ax, scene, dyn, spins or {})
@@ -146,6 +147,24 @@ def _disc(ax, scene, block, turn):
     ax.add_patch(Circle((c.real, c.imag), radius, facecolor="#dddddd", edgecolor="#333333",
                         lw=1.5, zorder=2))
     _line(ax, [c, tip], color="#333333", lw=1.2, zorder=3)
+
+
+def _contacts(ax, scene):
+    """Rolling discs and pulleys as circles (their links drawn on top), the lines and
+    tracks they roll on, their cords and belt strands."""
+    from matplotlib.patches import Circle
+    for shape in contacts(scene):
+        c = shape.centre
+        ax.add_patch(Circle((c.real, c.imag), shape.radius, facecolor="#eeeeee",
+                            edgecolor="#333333", lw=1.5, zorder=1))
+        if shape.ground is not None:
+            _line(ax, shape.ground, color="#444444", lw=1.5, zorder=1)
+        if shape.track is not None:
+            t, r = shape.track
+            ax.add_patch(Circle((t.real, t.imag), r, fill=False, edgecolor="#444444", lw=1.5,
+                                zorder=1))
+        if shape.strand is not None:
+            _line(ax, shape.strand, color="#8b5a2b", lw=1.6, zorder=2)
 
 
 def _grounds(ax, scene):

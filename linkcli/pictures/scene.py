@@ -130,6 +130,41 @@ def blocks(scene, dyn=None) -> list[Block]:
     return out
 
 
+@dataclass
+class Contact:
+    """A disc of ``rolling:`` or a pulley of ``cords:``: its circle, and what it rolls on or
+    what leaves it (display units)."""
+
+    centre: complex
+    radius: float
+    ground: list | None = None      # the fixed line it rolls on
+    track: tuple | None = None      # (centre, radius) of the fixed circle it rolls in or on
+    strand: list | None = None      # the straight cord or belt strand it turns with
+
+
+def contacts(scene) -> list[Contact]:
+    """Every rolling disc and pulley: a line contact at C + s r i u (``Rolling.side``), a
+    cord from the tangent point C + s r i u to its point, a belt strand between the two
+    tangent points."""
+    out = []
+    for r in scene.mech.rolling.values():
+        c, rad, u = scene.p[r.center], r.radius / scene.lf, r.direction
+        tangent = c + r.side * rad * 1j * u
+        shape = Contact(c, rad)
+        if r.kind == "line":
+            shape.ground = line_through(tangent, u, 2.5 * rad)
+        elif r.kind == "cord":
+            p = scene.p[r.point]
+            shape.strand = [tangent, tangent + ((p - tangent) * u.conjugate()).real * u]
+        elif r.kind == "belt":
+            far = scene.p[r.track] + r.other_side * r.track_radius / scene.lf * 1j * u
+            shape.strand = [tangent, far]
+        elif r.kind == "circle":
+            shape.track = (scene.p[r.track], r.track_radius / scene.lf)
+        out.append(shape)
+    return out
+
+
 def grounds(scene) -> list:
     """Fixed pivots that belong to a body (virtual points ``~...`` are not shown)."""
     used = used_points(scene.mech)
@@ -339,14 +374,15 @@ def gravity_arrow(xlim, ylim, size, gravity):
 
 
 def disc_points(mech, dyn, scene) -> list:
-    """Extreme points of rolling discs, so that the view holds them."""
-    out = []
-    if dyn is None:
-        return out
-    for disc in dyn.discs.values():
-        c, r = scene.p[disc.center], disc.radius / scene.lf
-        out += [c + r, c - r, c + 1j * r, c - 1j * r]
-    return out
+    """Extreme points of rolling discs, pulleys and their tracks, so that the view holds
+    them."""
+    circles = [(scene.p[d.center], d.radius / scene.lf)
+               for d in (dyn.discs.values() if dyn is not None else ())]
+    for shape in contacts(scene):
+        circles.append((shape.centre, shape.radius))
+        if shape.track is not None:
+            circles.append(shape.track)
+    return [c + r * k for c, r in circles for k in (1, -1, 1j, -1j)]
 
 
 def disc_turns(mech, dyn, kin) -> dict:

@@ -321,7 +321,9 @@ def batch(file, ks, form, decimals, output):
 @cli.command()
 @click.argument("paths", nargs=-1)
 @click.option("-v", "--verbose", is_flag=True, help="Also list every value that agrees.")
-def check(paths, verbose):
+@click.option("--format", "form", type=click.Choice(["text", "json"]), default="text",
+              show_default=True, help="json: every compared value, for a course's CI.")
+def check(paths, verbose, form):
     """Compare solutions with the answer keys stored in the files.
 
     PATHS are files or folders (default: mechanisms/).  One line per
@@ -329,15 +331,24 @@ def check(paths, verbose):
     Exit status 1 when a value disagrees or a file cannot be solved.
 
     \b
-    Example:
+    Examples:
       linkcli check mechanisms/
+      linkcli check mechanisms/ --format json > check.json
     """
-    from linkcli.answers.check import check_file, collect, summary_lines
+    from linkcli.answers.check import as_dict, check_file, collect, summary_lines
     files = collect(paths or ["mechanisms"])
     if not files:
         raise InputError("no mechanism files found", key="PATHS",
                          hint="give .yaml files or folders that hold them")
-    lines, ok = summary_lines([check_file(f) for f in files], verbose)
+    reports = [check_file(f) for f in files]
+    if form == "json":
+        import json
+        data = as_dict(reports)
+        _echo(json.dumps(data, indent=2))
+        if not data["ok"]:
+            sys.exit(1)
+        return
+    lines, ok = summary_lines(reports, verbose)
     colours = {"FAIL": "red", "ERROR": "red", "KNOWN": "yellow"}
     for line in lines:
         word = line.split(" ", 1)[0]

@@ -61,6 +61,27 @@ def test_a_wrong_value_fails_with_file_k_quantity_printed_and_computed(tmp_path,
     assert out.strip().splitlines()[-1] == "1 passed, 1 failed"
 
 
+def test_check_as_json_lists_every_value_and_the_totals_of_the_text(tmp_path, capsys):
+    import json
+    bad = write(tmp_path, "exam.yaml", with_key("      phi1: 28.9\n      phi2: 341.2\n"))
+    known = write(tmp_path, "known.yaml", with_key("      phi1: 28.9\n      phi2: 161.0\n",
+                                                   "      phi2: 'the angle of C to B'\n"))
+    code, out, _ = run(capsys, "check", bad, known, "--format", "json")
+    assert code == 1
+    data = json.loads(out)
+    values = {(f["file"], v["name"]): v for f in data["files"] for v in f["values"]}
+    assert values[(bad, "phi2")]["status"] == "fail"
+    assert values[(bad, "phi2")]["printed"] == "341.2"
+    assert values[(bad, "phi2")]["computed"] == "341.0"
+    assert values[(known, "phi2")]["status"] == "known"
+    assert values[(known, "phi2")]["reason"] == "the angle of C to B"
+    assert (data["passed"], data["failed"], data["known"], data["ok"]) == (2, 1, 1, False)
+    code, text, _ = run(capsys, "check", bad, known)
+    assert text.strip().splitlines()[-1] == "2 passed, 1 failed"
+    code, out, _ = run(capsys, "check", known, "--format", "json")
+    assert code == 0 and json.loads(out)["ok"] is True
+
+
 def test_a_known_key_problem_is_counted_apart_and_never_fails(tmp_path, capsys):
     path = write(tmp_path, "exam.yaml", with_key("      phi1: 28.9\n      phi2: 161.0\n",
                                                  "      phi2: 'the angle of C to B'\n"))

@@ -274,3 +274,21 @@ def summary_lines(reports: list[FileReport], verbose: bool = False) -> tuple[lis
                  "errors")
     lines.append(f"{passed} passed, {failed + errors} failed")
     return lines, failed == 0 and errors == 0
+
+
+def as_dict(reports: list[FileReport]) -> dict:
+    """The reports as data for a course's CI: every compared value with its status
+    ('pass', 'fail', 'known'), the files that could not be solved, and the totals."""
+    files = []
+    for rep in reports:
+        files.append({"file": rep.file, "error": rep.error, "keys": rep.keys,
+                      "values": [{"k": o.k, "name": o.name, "printed": o.printed,
+                                  "computed": o.computed, "status": o.status,
+                                  "reason": o.reason or None, "tolerance": o.tolerance or None,
+                                  "within_tolerance": o.within} for o in rep.outcomes]})
+    total = {s: sum(r.count(s) for r in reports) for s in ("pass", "fail", "known")}
+    errors = sum(r.error is not None for r in reports)
+    return {"files": files, "passed": total["pass"], "failed": total["fail"] + errors,
+            "known": total["known"], "errors": errors,
+            "without_key": sum(not r.keys and r.error is None for r in reports),
+            "ok": total["fail"] == 0 and errors == 0}

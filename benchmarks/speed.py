@@ -19,9 +19,10 @@ positions (five-point differences, step 1e-3 of the driver range, relative to th
 largest rate: the differences themselves are good to ~1e-8), and the largest difference between linkcli and the
 hand-written values (angles in rad, others relative).
 
-    python benchmarks/speed.py [--quick]
+    python benchmarks/speed.py [--quick] [--repeat R] [--mechanism NAME ...]
 
---quick stops at N = 10^6.  Writes benchmarks/out/speed.md (the table, also printed)
+--quick stops at N = 10^6; --repeat R takes the median of R timings up to 10^6 (the
+machine's noise, ~20 %, is larger than many a change); --mechanism times only those.  Writes benchmarks/out/speed.md (the table, also printed)
 and benchmarks/out/speed.png (time per position against N).
 """
 from __future__ import annotations
@@ -150,6 +151,16 @@ def best_time(func, budget=1.0, most=200):
     return best
 
 
+def median_times(funcs, budget, repeat):
+    """Per function, the median of ``repeat`` best times (:func:`best_time`), the functions'
+    runs interleaved so that a slow spell of the machine falls on all of them."""
+    times = [[] for _ in funcs]
+    for _ in range(max(1, repeat)):
+        for func, got in zip(funcs, times):
+            got.append(best_time(func, budget))
+    return [float(np.median(got)) for got in times]
+
+
 def in_blocks(func, c, n):
     """Solve ``n`` positions block by block (values dropped): seconds."""
     start = time.perf_counter()
@@ -234,6 +245,11 @@ def machine() -> str:
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="stop at N = 10^6")
+    parser.add_argument("--repeat", type=int, default=1, metavar="R",
+                        help="up to 10^6: the median of R timings, each the best of its runs "
+                        "(a shared machine varies by ~20 %%)")
+    parser.add_argument("--mechanism", action="append", choices=list(CASES),
+                        help="time only this mechanism (repeatable)")
     parser.add_argument("--child", nargs=3, help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.child:
@@ -242,7 +258,7 @@ def main(argv=None):
     sizes = [n for n in SIZES if not args.quick or n <= 10 ** 6]
     os.makedirs(OUT, exist_ok=True)
     rows = []
-    for key in CASES:
+    for key in args.mechanism or CASES:
         c = case(key)
         c.solve(c.grid(8))
         closure, fd_mine, fd_hand, agree = accuracy(c)
@@ -254,8 +270,9 @@ def main(argv=None):
             if n <= 10 ** 6:
                 q = c.grid(n)
                 budget = 2.0 if n < 10 ** 6 else 1.0
-                row["linkcli"] = best_time(lambda: c.solve(q), budget) / n
-                row["hand"] = best_time(lambda: c.by_hand(q), budget) / n
+                mine, hand = median_times((lambda: c.solve(q), lambda: c.by_hand(q)), budget,
+                                          args.repeat)
+                row["linkcli"], row["hand"] = mine / n, hand / n
             else:
                 for method in ("linkcli", "hand"):
                     run = subprocess.run([sys.executable, os.path.abspath(__file__), "--child",

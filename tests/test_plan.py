@@ -179,3 +179,28 @@ def test_a_non_finite_value_is_named_not_returned(monkeypatch):
     with pytest.raises(SolveError, match="'beta' is not a finite number"), \
             np.errstate(all="ignore"):
         plan_for(mech).collect(mech, solver_for(mech), kin)
+
+
+@pytest.mark.parametrize("source", ["four-bar", "crank-slider"])
+def test_a_long_array_in_blocks_gives_the_whole_array_values_bit_for_bit(source, monkeypatch):
+    """Above BLOCK driver values the plan solves BLOCK at a time: the same numbers, to the
+    last bit in the whole blocks, as one pass over the whole array (NumPy's loops may round
+    the last bit of a short tail block otherwise), and the same kinematics when read."""
+    import sys
+    sys.path.insert(0, os.path.join(ROOT, "benchmarks"))
+    from speed_accuracy import CRANK_SLIDER, FOURBAR as BENCH_FOURBAR
+    mech = linkcli.loads(BENCH_FOURBAR if source == "four-bar" else CRANK_SLIDER).model
+    names = report_names(mech)
+    block = quantities.BLOCK
+    q = np.linspace(0.0, 360.0, 2 * block + 7)
+    blocks = quantities.evaluate(mech, q, names=names)
+    monkeypatch.setattr(quantities, "BLOCK", 10 ** 9)
+    whole = quantities.evaluate(mech, q, names=names)
+    full = 2 * block
+    for name in names:
+        got, expected = blocks.values[name], whole.values[name]
+        assert np.array_equal(got[:full], expected[:full]), name
+        assert np.allclose(got[full:], expected[full:], rtol=1e-14,
+                           atol=1e-14 * np.max(np.abs(expected))), name
+    for p in mech.moving:
+        assert np.array_equal(blocks.kinematics.pos[p], whole.kinematics.pos[p]), p

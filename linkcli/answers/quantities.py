@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.errors import InputError, SolveError
+from linkcli.errors import InputError, LinkcliError, SolveError
 from linkcli.forces import motion
 from linkcli.kinematics.closed_form import own_coordinates, where_text
 from linkcli.kinematics.solvers import solver_for
@@ -29,6 +29,8 @@ from linkcli.forces.statics import unknown_load
 from linkcli.model.units import ANGLE, FORCE, LENGTH, TORQUE
 
 TWO_PI = 2 * math.pi
+#: a long array of driver values is solved this many positions at a time (see Plan._in_blocks)
+BLOCK = 1 << 15
 #: a point is at rest (its velocity has no direction) where its speed is at most AT_REST
 #: times the largest speed of the mechanism's points; a body translates where its angular
 #: velocity is at most AT_REST times the largest rate of the mechanism (the largest angular
@@ -192,6 +194,10 @@ class Plan:
         order = self.order(mech)
         driver = mech.driver
         f0, f1, f2 = self.q_factors
+        if q is not None and np.size(q) > BLOCK and self._blockwise:
+            result = self._in_blocks(mech, solver, order, q, qdot, qddot)
+            if result is not None:
+                return result
         kin = solver.positions(driver.value if q is None else np.asarray(q, float) * f0)
         solver.check(kin, velocities=False)
         if order >= 1:
@@ -204,6 +210,51 @@ class Plan:
         if q is None:       # the file's own position: what the figure check says of it
             from linkcli.answers.validate import figure_cautions
             result.cautions = figure_cautions(mech) if self.method == "closed" else []
+        return result
+
+    @property
+    def _blockwise(self) -> bool:
+        """Whether every name is a kernel of the positions and rates alone (no loads, no
+        quantity that looks at all the positions at once, no points): then a long array of
+        driver values may be solved block by block."""
+        return self.method == "closed" and not self.generic and not self.wants_loads \
+            and not self.points
+
+    def _in_blocks(self, mech, solver, order, q, qdot, qddot):
+        """:meth:`evaluate` of a long 1-D array of driver values, BLOCK positions at a time:
+        the arrays of a block stay in the processor's cache, several times faster than
+        passes over arrays of millions.  The values are the whole-array ones (every
+        operation is position by position).  None when anything is refused or not of the
+        driver values' shape: the whole-array path then decides, and words its errors for
+        every position at once."""
+        driver = mech.driver
+        f0, f1, f2 = self.q_factors
+        try:
+            qs = np.asarray(q, float) * f0
+            qd = driver.rate if qdot is None else np.asarray(qdot, float) * f1
+            qdd = driver.accel if qddot is None else np.asarray(qddot, float) * f2
+            if qs.ndim != 1 or solver.n != 1 or any(np.ndim(x) and np.shape(x) != qs.shape
+                                                    for x in (qd, qdd)):
+                return None
+            table = np.empty((len(self.names), qs.size))
+            for lo in range(0, qs.size, BLOCK):
+                hi = min(qs.size, lo + BLOCK)
+                part = solver.positions(qs[lo:hi])
+                solver.check(part, velocities=False)
+                if order >= 1:
+                    solver.velocities(part, qd[lo:hi] if np.ndim(qd) else qd)
+                    solver.check(part, velocities=True)
+                if order >= 2:
+                    solver.accelerations(part, qdd[lo:hi] if np.ndim(qdd) else qdd)
+                for i, (fn, _) in enumerate(self.steps):
+                    fn(part, table[i, lo:hi])
+            if not np.isfinite(table).all():
+                return None
+        except LinkcliError:
+            return None
+        result = Result(mech, kinematics=Later(solver, qs, qd, qdd, order))
+        result.units = {name: unit for name, (_, unit) in zip(self.names, self.steps)}
+        result.values = dict(zip(self.names, table))
         return result
 
     def collect(self, mech, solver, kin) -> Result:
@@ -234,6 +285,31 @@ class Plan:
         if self.points:
             _require_finite(mech, {p: xy for p, xy in result.points.items()})
         return result
+
+
+class Later:
+    """The kinematics of a blockwise evaluation (:meth:`Plan._in_blocks`), solved over the
+    whole array when first read: joining the blocks' costs more than solving again, and
+    most callers read only the values.  ``q`` is at hand; any other attribute is that of
+    the :class:`Kinematics` the whole-array path makes."""
+
+    def __init__(self, solver, q, qd, qdd, order):
+        self.q = q
+        self._solve = (solver, qd, qdd, order)
+        self._kin = None
+
+    def __getattr__(self, name):
+        if name.startswith("__") or "_solve" not in self.__dict__:
+            raise AttributeError(name)
+        if self._kin is None:
+            solver, qd, qdd, order = self._solve
+            kin = solver.positions(self.q)
+            if order >= 1:
+                solver.velocities(kin, qd)
+            if order >= 2:
+                solver.accelerations(kin, qdd)
+            self._kin = kin
+        return getattr(self._kin, name)
 
 
 def _collect_each(mech, solver, kin, names, result):
@@ -285,6 +361,8 @@ def _step(mech, name):
     if base == "angle" and order == 0:
         return _angle_kernel(a, b, factor, quantity.signed), unit
 
+    if base == "angle":
+        return _angle_rate_kernel(a, b, factor, order), unit
     signed = quantity.signed and order == 0
 
     def vector(kin, out):
@@ -311,6 +389,28 @@ def _angle_kernel(a, b, factor, signed):
         if factor != 1:
             np.divide(out, factor, out=out)
     return angle
+
+
+def _angle_rate_kernel(a, b, factor, order):
+    """phi' = Im w (``order`` 1) or phi'' = Im(z''/z) - 2 Re w Im w (2) of z = P_b - P_a,
+    w = z'/z, written into ``out`` in display units."""
+    def angle_rate(kin, out):
+        z, w = _rates(kin, a, b)
+        if getattr(w, "shape", ()) != out.shape:
+            _put(_vector_rate(kin, a, b, order, True), factor, kin, out)
+            return
+        if order == 1:
+            _put(w.imag, factor, kin, out)
+            return
+        dw = _relative(kin.acc, a, b) / z
+        np.multiply(w.real, w.imag, out=out)
+        out *= -2.0
+        out += dw.imag
+        if factor != 1:
+            out /= factor
+        else:
+            out += 0.0
+    return angle_rate
 
 
 def _put(value, factor, kin, out):
@@ -415,14 +515,19 @@ def _vector(quantity, kin, order):
         z = _rates(kin, quantity.a, quantity.b, rate=False)[0]
         value = wrap_angle(np.angle(z), principal=True) if base == "angle" else np.abs(z)
         return value, base
-    z, w = _rates(kin, quantity.a, quantity.b)
+    return _vector_rate(kin, quantity.a, quantity.b, order, base == "angle"), base
+
+
+def _vector_rate(kin, a, b, order, angle):
+    """The rate of ``order`` (1 or 2) of the angle (``angle``) or length of P_b - P_a."""
+    z, w = _rates(kin, a, b)
     if order == 1:
-        return (w.imag if base == "angle" else np.abs(z) * w.real), base
-    dw = _relative(kin.acc, quantity.a, quantity.b) / z
-    if base == "angle":                 # Im(z''/z - w^2)
-        return dw.imag - 2.0 * w.real * w.imag, base
+        return w.imag if angle else np.abs(z) * w.real
+    dw = _relative(kin.acc, a, b) / z
+    if angle:                           # Im(z''/z - w^2)
+        return dw.imag - 2.0 * w.real * w.imag
     dw = dw - w * w
-    return np.abs(z) * (dw.real + w.real ** 2), base
+    return np.abs(z) * (dw.real + w.real ** 2)
 
 
 def _rates(kin, a, b, rate=True):

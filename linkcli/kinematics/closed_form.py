@@ -89,6 +89,7 @@ class Kinematics:
     measure: dict = field(default_factory=dict)   # group index -> conditioning array
     flat: dict = field(default_factory=dict)      # group index -> toggle within rounding
     linear: dict = field(default_factory=dict, repr=False)  # group index -> rate-system inverse
+    #                                                          (a driver's: its arm P - pivot)
     vectors: dict = field(default_factory=dict, repr=False)  # (a, b) -> (z, z'/z) for reports
 
     def __post_init__(self):
@@ -115,6 +116,7 @@ class Solver:
         self.groups = self.topology.groups
         self.fixed = dict(mech.fixed)
         self.n = len(mech.coordinates)
+        self._frames = {}               # fixed guides: (B, C, value) -> (u, e), found once
         self._choose_branches()
 
     # branches ------------------------------------------------------------------
@@ -307,10 +309,14 @@ class Solver:
         if kind == "place":
             k, m, n, w = group.place
             return pos[k] + (pos[m] - pos[n]) * w, None
-        if kind == "driver-angle":
+        if kind == "driver-angle":        # P = pivot + L e^{i q}, written into one array
             pivot, length, reverse = group.constraints
-            return pos[pivot] + (-length if reverse else length) * dyads.cis(q[group.coord]), \
-                None
+            p = dyads.cis(q[group.coord])
+            if not dyads.writable(p, pos[pivot]):
+                return pos[pivot] + (-length if reverse else length) * p, None
+            p *= -length if reverse else length
+            p += pos[pivot]
+            return p, None
         if kind == "driver-coord":
             line, coord = group.constraints
             value = q[coord.coord]
@@ -327,7 +333,8 @@ class Solver:
         if kind in ("RRP", "PRR"):
             dist, line = (c1, c2) if kind == "RRP" else (c2, c1)
             return dyads.circle_line(pos[dist.a], self._length(dist, q), pos[line.b],
-                                     pos[line.c], line.value, group.branch, flat=True)
+                                     pos[line.c], line.value, group.branch, flat=True,
+                                     frame=self._frame(line))
         if kind in ("PRP", "RPP"):         # a point on two lines (RPP: module topology)
             u1, e1 = dyads.line_frame(pos[c1.b], pos[c1.c], c1.value)
             u2, e2 = dyads.line_frame(pos[c2.b], pos[c2.c], c2.value)
@@ -337,6 +344,15 @@ class Solver:
             return dyads.slotted(pos[c1.a], c1.length, pos[c2.p], c2.value, group.branch,
                                  flat=True)
         return None, None
+
+    def _frame(self, line):
+        """The (u, e) of a line whose points are fixed (kept), None for a moving one."""
+        key = (line.b, line.c, line.value)
+        frame = self._frames.get(key)
+        if frame is None and line.b in self.fixed and line.c in self.fixed:
+            frame = self._frames[key] = dyads.line_frame(self.fixed[line.b],
+                                                         self.fixed[line.c], line.value)
+        return frame
 
     def _roll_position(self, group, pos):
         """The marker M = C + d e^{i (theta0 + sum c_k (mu_k - mu_k0))} of a rolling disc."""
@@ -427,13 +443,20 @@ class Solver:
                 return _get(d, r.center) + 1j * omega * arm
             alpha = sum(c * term.accel(pos, vel, d) for term, c, _ in terms)
             return _get(d, r.center) + (1j * alpha - omega * omega) * arm
-        if group.kind == "driver-angle":
+        if group.kind == "driver-angle":  # P' = i q' (P - pivot), P'' = (i q'' - q'^2) (P - pivot)
             pivot = group.constraints[0]
-            arm = pos[group.point] - pos[pivot]
+            arm = kin.linear.get(index)     # P - pivot, kept for the second rates
+            if arm is None:
+                arm = kin.linear[index] = pos[group.point] - pos[pivot]
             j = group.coord
             rate = arm * (1j * qrate[j]) if vel is None else \
                 arm * (1j * qrate[j] - kin.rates[j] ** 2)
-            return d[pivot] + rate if pivot in d else rate
+            if pivot not in d:
+                return rate
+            if dyads.writable(rate, d[pivot]):
+                rate += d[pivot]
+                return rate
+            return d[pivot] + rate
         k1, k2, g1, g2 = self._inverse(index, group, kin)
         c1, c2 = group.constraints
         r1 = _rhs(c1, g1, pos, d, kin.coords, qrate, vel, kin.rates)
@@ -469,17 +492,18 @@ class Solver:
             det = x1 * y2
             det -= y1 * x2                  # cross(G_1, G_2), in real parts
             norms = np.abs(g1) * np.abs(g2)      # hypot: no underflow of tiny guides
-            if not _everywhere(norms > 0):
+            if not _least(norms) > 0:       # a zero or NaN: divide those by 1
                 norms = np.where(norms > 0, norms, 1.0)
             measure = np.abs(det)
             measure /= norms
             if index in kin.flat:           # a toggle within rounding: singular, whatever
                 measure = np.where(kin.flat[index], 0.0, measure)   # the noise in det says
             kin.measure[index] = measure
-            if _anywhere(det == 0):
+            if not (det.all() if type(det) is np.ndarray else det):   # a zero: divide by 1
                 det = np.where(det == 0, 1.0, det)
             inv = 1.0 / det
-            lin = ((y2 * inv, -x2 * inv), (-y1 * inv, x1 * inv), g1, g2)
+            minus = -inv                    # -x inv = x (-inv), exactly
+            lin = ((y2 * inv, x2 * minus), (y1 * minus, x1 * inv), g1, g2)
             kin.linear[index] = lin
         return lin
 
@@ -487,9 +511,9 @@ class Solver:
     def check(self, kin: Kinematics, velocities: bool):
         """Raise when a group cannot be assembled or (for rates) is singular."""
         for index, short in kin.short.items():
-            bad = short > 0
-            if not _anywhere(bad):          # the common case, decided on the array as it is
+            if not _exceeds(short, 0.0):    # the common case, decided on the array as it is
                 continue
+            bad = short > 0
             bad = np.broadcast_to(bad, kin.shape) if np.ndim(short) else bad
             if np.any(bad):
                 worst = float(np.max(np.where(bad, short, 0.0)))
@@ -499,8 +523,8 @@ class Solver:
         if not velocities:
             return
         for index, measure in kin.measure.items():
-            bad = measure < SINGULAR
-            if _anywhere(bad):
+            if _under(measure, SINGULAR):
+                bad = measure < SINGULAR
                 raise singular_error(self.mech, self.groups[index], kin.q,
                                      np.broadcast_to(bad, kin.shape), measure,
                                      "sine of the angle between its constraint directions")
@@ -640,9 +664,24 @@ def _anywhere(mask) -> bool:
     return mask.any() if isinstance(mask, np.ndarray) else bool(np.any(mask))
 
 
-def _everywhere(mask) -> bool:
-    """np.all(mask), as :func:`_anywhere`."""
-    return mask.all() if isinstance(mask, np.ndarray) else bool(np.all(mask))
+def _exceeds(x, level) -> bool:
+    """Whether any of ``x`` is above ``level`` (NaN is not): np.any(x > level) by one
+    reduction, without the mask."""
+    if type(x) is np.ndarray and x.size:
+        return bool(np.fmax.reduce(x, axis=None) > level)
+    return _anywhere(np.asarray(x) > level)
+
+
+def _under(x, level) -> bool:
+    """Whether any of ``x`` is below ``level`` (NaN is not), as :func:`_exceeds`."""
+    if type(x) is np.ndarray and x.size:
+        return bool(np.fmin.reduce(x, axis=None) < level)
+    return _anywhere(np.asarray(x) < level)
+
+
+def _least(x):
+    """The smallest of ``x`` (NaN if any is NaN), without np.min's dispatch."""
+    return x.min() if type(x) is np.ndarray else np.min(x)
 
 
 def _grad(c, pos, unknown):
@@ -672,15 +711,13 @@ def _rhs(c, grad, pos, d, q, qrate, vel, qd):
     """
     if isinstance(c, Dist):           # g = |P - A|^2 - L^2, G = 2 (P - A), P unknown
         va = d.get(c.a)
-        r = 0.0 if va is None else _dot(grad, va)
+        r = 0.0 if va is None else (grad.conjugate() * va).real
         if c.length is None:
             r = r + 2.0 * q[c.coord] * qrate[c.coord]
         if vel is not None:
             dv = _delta(vel, c.p, c.a)
             if dv is not None:
-                square = _dot(dv, dv)
-                square *= 2.0
-                r = r - square
+                r = r - 2.0 * (dv.real * dv.real + dv.imag * dv.imag)
             if c.length is None:
                 r = r + 2.0 * qd[c.coord] * qd[c.coord]
         return r
@@ -699,24 +736,18 @@ def _rhs(c, grad, pos, d, q, qrate, vel, qd):
     return qrate[c.coord]             # g = x (or y) of P - q
 
 
-def _dot(a, b):
-    """Re(conj(a) b) = a_x b_x + a_y b_y, in real parts (no complex temporaries)."""
-    out = a.real * b.real
-    if isinstance(out, np.ndarray) and out.ndim:
-        out += a.imag * b.imag
-        return out
-    return out + a.imag * b.imag
-
-
 def _combine(r1, k1, r2, k2):
     """r1 K1 + r2 K2 as a complex array, skipping terms whose r is a zero scalar; written
     straight into the complex result (a zero is +0, as 0 + r1 K1 + r2 K2 gives)."""
     terms = [(r, k) for r, k in ((r1, k1), (r2, k2))
              if (r.ndim if isinstance(r, np.ndarray) else 0) or r != 0]
-    if not terms:
-        return 0j
+    if not terms:                       # a point moving with the frame: zero
+        return dyads._complex(0.0, 0.0) if np.ndim(k2[0]) else 0j
     (r, (kx, ky)), rest = terms[0], terms[1:]
-    shape = np.broadcast_shapes(*(np.shape(x) for t in terms for x in (t[0], t[1][0])))
+    shape = ()
+    for x in (x for t in terms for x in (t[0], t[1][0])):
+        if type(x) is np.ndarray and x.shape != shape:
+            shape = np.broadcast_shapes(shape, x.shape) if shape else x.shape
     if not shape:
         re = im = 0.0
         for r, (kx, ky) in terms:

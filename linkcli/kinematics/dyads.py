@@ -17,6 +17,8 @@ noise of order sqrt(eps) and must not be mistaken for a regular position.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 EPS = np.finfo(float).eps
@@ -71,7 +73,8 @@ def circle_circle(a, r1, b, r2, branch, flat=False):
     t = (r1sq - r2 * r2 + d2) / (2.0 * d2)
     along2, across2 = t * t, r1sq / d2          # (a/d)^2 and (r1/d)^2
     e = across2 - along2
-    if (e < 0).any():
+    negative = (e < 0).any()
+    if negative:
         s, gap = _root(e, np.maximum(across2, along2))
         d = np.sqrt(d2)
         short = np.where(gap > 0, np.maximum(d - (r1 + r2), np.abs(r1 - r2) - d), 0.0)
@@ -80,6 +83,12 @@ def circle_circle(a, r1, b, r2, branch, flat=False):
     p = a + d_vec * _complex(t, s if branch > 0 else -s)
     if not flat:
         return p, short
+    if not negative:                    # e >= 0: the noise is below this bound everywhere
+        least = float(d2.min())
+        top = _top(r1)
+        if _clear(e, TOGGLE * top * top / least * (1.0 + (_top(a) + _top(b)) /
+                                                   math.sqrt(least))):
+            return p, short, np.zeros(e.shape, bool)
     reach = (np.abs(a) + np.abs(b)) / np.sqrt(d2)          # coordinates against the span
     noise = TOGGLE * np.maximum(across2, along2) * (1.0 + reach)
     return p, short, np.abs(e) <= noise
@@ -113,37 +122,33 @@ def circle_line(a, r, b, c, value, branch, flat=False, frame=None):
     d the distance of A from the line.  ``frame``: the line's (u, e), when known.
     """
     u, e = line_frame(b, c, value) if frame is None else frame
-    rel = a - b
-    if _fresh(rel, u):
-        rel *= u.conjugate()            # in place: a fresh array
-    else:
-        rel = rel * u.conjugate()
+    rel = (a - b) * u.conjugate()
     dist = rel.imag - e
     disc = dist * dist
-    if _fresh(disc, r):
+    if writable(disc, r):
         np.subtract(r * r, disc, out=disc)
     else:
         disc = r * r - disc
-    if _anywhere(disc < 0):
+    negative = _anywhere(disc < 0)
+    if negative:
         s, gap = _root(disc, np.maximum(r * r, dist * dist))
         short = np.where(gap > 0, np.abs(dist) - r, 0.0)
     else:
         s, short = np.sqrt(disc), _no_short(disc)
-    if _fresh(s, rel):
+    if writable(s, rel):
         along = np.add(rel.real, s, out=s) if branch > 0 else np.subtract(rel.real, s, out=s)
     else:
         along = rel.real + s if branch > 0 else rel.real - s
-    p = _complex(along, e)
-    if _fresh(p, u, b):
-        p *= u
-        p += b
-    else:
-        p = b + p * u
+    p = b + _complex(along, e) * u
     if not flat:
         return p, short
+    if not negative:                    # |d| <= r: every noise below the bound
+        top = _top(r)
+        if _clear(disc, TOGGLE * (top * top + top * (_top(a) + _top(b) + _top(e) + top))):
+            return p, short, np.zeros(np.shape(disc), bool)
     # TOGGLE (r^2 + |d| (|A| + |B| + |e| + r)), the same operations in place
     noise = np.abs(a)
-    if _fresh(noise, b, e, r, dist):
+    if writable(noise, b, e, r, dist):
         noise += np.abs(b)
         noise += np.abs(e)
         noise += r
@@ -155,11 +160,31 @@ def circle_line(a, r, b, c, value, branch, flat=False, frame=None):
     return p, short, np.abs(disc) <= noise
 
 
-def _fresh(x, *others) -> bool:
-    """Whether ``x`` is an array that the ``others`` broadcast into (so an operation with
-    them can be written into it)."""
-    return isinstance(x, np.ndarray) and x.ndim > 0 and \
-        all(np.ndim(o) == 0 or np.shape(o) == x.shape for o in others)
+def _top(x) -> float:
+    """The largest magnitude of ``x`` (an array or a number)."""
+    return float(np.abs(x).max()) if type(x) is np.ndarray else abs(x)
+
+
+def _clear(disc, bound) -> bool:
+    """Whether no discriminant (all >= 0) is within ``bound``, a bound of the rounding
+    each carries: then none is a toggle.  Twice the bound covers the rounding of the
+    bound itself; NaN anywhere says no (the exact test decides)."""
+    least = disc.min() if isinstance(disc, np.ndarray) else disc
+    return bool(least > 2.0 * bound)
+
+
+def writable(x, *others) -> bool:
+    """Whether an operation of ``x`` with the ``others`` can be written into ``x``: it is
+    an array (not a number) whose shape each of them broadcasts into.  The caller
+    passes only arrays it has just made."""
+    if type(x) is not np.ndarray or not x.ndim:
+        return False
+    for o in others:
+        if type(o) is not float and type(o) is not complex:
+            shape = getattr(o, "shape", ())
+            if shape and shape != x.shape:
+                return False
+    return True
 
 
 def _anywhere(mask) -> bool:

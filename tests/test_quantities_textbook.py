@@ -214,6 +214,31 @@ def test_coupler_point_speed_and_acceleration_components_match_differences():
     near(scalar_differences(speeds)[0], got["vPdot"], rel=1e-6, scale=abs(a))
 
 
+def test_relative_projections_are_the_textbooks_normal_and_tangential_components():
+    """Of C relative to B on the coupler (B -> C its axis): along B -> C the relative
+    acceleration is -omega^2 BC, normal to it alpha BC, omega and alpha the coupler's
+    (from differences of its angle); the position along it is BC, its rate 0; along a
+    fixed vector the pair form is the difference of the point forms."""
+    text = FOURBAR.replace("quantities:\n", "quantities:\n"
+                           "  rBC: {along: [B, C], point: [B, C]}\n"
+                           "  tBC: {normal_to: [B, C], point: [B, C]}\n"
+                           "  dBP: {along: [A, D], point: [B, P]}\n"
+                           "  sB: {along: [A, D], point: B}\n"
+                           "  sP2: {along: [A, D], point: P}\n")
+    mech = linkcli.loads(text)
+    q0, qd, qdd = 1.0, 2.0, -3.0
+    got = solve(mech, ["rBC", "rBCdot", "rBCddot", "tBCddot", "dBP", "dBPddot", "sB", "sBddot",
+                       "sP2", "sP2ddot"], q=q0, qdot=qd, qddot=qdd)
+    angles = solve(mech, ["cpl"], q=timeline(q0, qd, qdd))["cpl"]
+    omega, alpha = scalar_differences(np.unwrap(np.asarray(angles)))
+    near(got["rBC"], 0.35)
+    near(got["rBCdot"], 0.0, scale=0.35 * abs(omega))
+    near(got["rBCddot"], -omega ** 2 * 0.35, rel=1e-6)
+    near(got["tBCddot"], alpha * 0.35, rel=1e-6)
+    near(got["dBP"], got["sP2"] - got["sB"], rel=1e-12)
+    near(got["dBPddot"], got["sP2ddot"] - got["sBddot"], rel=1e-12)
+
+
 def test_normal_acceleration_is_speed_squared_over_the_radius_of_curvature():
     """The crank pin's path is a circle of radius r: a_n = |v|^2 / r at any rates."""
     got = solve(CRANK_SLIDER, ["vA", "anA"], q=np.linspace(0, 6, 7), qdot=-4.0, qddot=9.0)

@@ -129,7 +129,8 @@ def bevan_3_5():
     return {"vB": abs(w2) * 2.5 / FT, "vC": abs(s["w4"]) * 4.5 / FT,
             "vCB": abs(s["w3"]) * 7 / FT, "anB": w2 ** 2 * 2.5 / FT,
             "anC": s["w4"] ** 2 * 4.5 / FT, "thBCdot": s["w3"], "thCDdot": s["w4"],
-            "thBCddot": s["al3"], "thCDddot": s["al4"]}
+            "thBCddot": s["al3"], "thCDddot": s["al4"],
+            "btCBddot": s["w3"] ** 2 * 7 / FT}           # C's radial acceleration about B
 
 
 def khurmi_7_2():

@@ -662,7 +662,9 @@ def _si(quantity, order, kin, context):
     if kind in ("along", "normal_to"):
         z = kin.pos[b] - kin.pos[a]
         u = z / np.abs(z) * (1 if kind == "along" else 1j)
-        return (np.conj(u) * rates[order].get(quantity.c, 0j)).real, "length", order
+        moved = rates[order].get(quantity.c, 0j) if quantity.d is None else \
+            _relative(rates[order], quantity.c, quantity.d)
+        return (np.conj(u) * moved).real, "length", order
     if kind == "relative":
         z = kin.pos[b] - kin.pos[a] if order == 0 else _relative(rates[order], a, b)
         return (np.real(z) if quantity.component == "x" else np.imag(z)), "length", order

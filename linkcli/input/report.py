@@ -298,9 +298,12 @@ class AnswersSection:
             return Quantity(name, kind, self.name(arg, where, pool))
         if kind in PROJECTIONS or kind in OF_PAIR:
             a, b = self.pair(arg, where, pool)
-            point = self.name(value["point"], path + ("point",), pool) \
-                if kind in PROJECTIONS else None
-            return Quantity(name, kind, a, b, component=component, c=point)
+            point, other = None, None
+            if kind in PROJECTIONS and isinstance(value["point"], list):
+                point, other = self.pair(value["point"], path + ("point",), pool)
+            elif kind in PROJECTIONS:
+                point = self.name(value["point"], path + ("point",), pool)
+            return Quantity(name, kind, a, b, component=component, c=point, d=other)
         if kind == "between":
             if not isinstance(arg, list) or len(arg) != 2:
                 raise self.error(where, f"between takes two vectors [[A, B], [C, D]], got {arg!r}")

@@ -120,7 +120,8 @@ def khurmi_6_1():
 def khurmi_8_4():
     s = four_bar(200, 62.5, 175, 112.5, math.radians(60), -10, 0, [0.3, 1.6])
     return {"vRQ": abs(s["w3"]) * 0.175, "vR": abs(s["w4"]) * 0.1125, "thQRdot": s["w3"],
-            "thRSdot": s["w4"], "thQRddot": s["al3"], "thRSddot": s["al4"]}
+            "thRSdot": s["w4"], "thQRddot": s["al3"], "thRSddot": s["al4"],
+            "atRQddot": s["al3"] * 0.175, "atRSddot": s["al4"] * 0.1125}
 
 
 def bevan_3_5():
@@ -148,7 +149,7 @@ def khurmi_8_1():
     D = (s["C"] + s["P"]) / 2
     vD, aD = point_motion(s["C"], s["vC"], s["aC"], s["w3"], s["al3"], D)
     return {"vD": norm(vD) / 1000, "aD": norm(aD) / 1000, "vAB": abs(s["w3"]) * 0.6,
-            "thABdot": s["w3"], "thABddot": s["al3"]}
+            "thABdot": s["w3"], "thABddot": s["al3"], "atABddot": -s["al3"] * 0.6}
 
 
 def bevan_3_3():
@@ -177,7 +178,8 @@ def bevan_3_4(al2):
     _, aX = point_motion(C, s["vC"], s["aC"], s["w3"], s["al3"], X)
     _, aP_rel = point_motion(C, 0 * C, 0 * C, s["w3"], s["al3"], P)
     return {"anC": (240 * RPM) ** 2 * 9 / FT, "aC": norm(s["aC"]) / FT,
-            "aPC": norm(aP_rel) / FT, "aX": norm(aX) / FT, "thCPddot": s["al3"]}
+            "aPC": norm(aP_rel) / FT, "aX": norm(aX) / FT, "thCPddot": s["al3"],
+            "atPCddot": s["al3"] * 36 / FT}
 
 
 def vp_singh_13_3():

@@ -239,6 +239,73 @@ def test_relative_projections_are_the_textbooks_normal_and_tangential_components
     near(got["dBPddot"], got["sP2ddot"] - got["sBddot"], rel=1e-12)
 
 
+KENNEDY = """
+title: four-bar ABCD (Khurmi 6.1's data)
+units: {length: mm, angle: deg, angular_rate: rad/s}
+frame: {A: [0, 0], D: [600, 0]}
+points: {B: [150, 259.8], C: [499.6, 345.7]}
+links:
+  AB: {points: [A, B], length: 300}
+  BC: {points: [B, C], length: 360}
+  CD: {points: [D, C], length: LCD}
+driver: {angle: [A, B], value: 60, rate: -10.47}
+quantities:
+  I13x: {instant_centre: BC, component: x}
+  I13y: {instant_centre: BC, component: y}
+  I24x: {instant_centre: [AB, CD], component: x}
+  I24y: {instant_centre: [AB, CD], component: y}
+  I42x: {instant_centre: [CD, AB], component: x}
+  I13fx: {instant_centre: [BC, frame], component: x}
+report:
+  position: [I13x]
+"""
+
+
+def _meet(p1, p2, p3, p4):
+    """Where the line p1 p2 meets the line p3 p4 (complex points)."""
+    d1, d2 = p2 - p1, p4 - p3
+    t = ((p3 - p1).conjugate() * d2).imag / ((d1.conjugate() * d2).imag)
+    return p1 + t * d1
+
+
+def test_relative_instant_centres_follow_kennedys_theorem():
+    """I24 (AB relative to CD) lies on A D and on B C, I13 on A B and on D C (Kennedy's
+    three-centre theorem); the points of AB and of CD at I24 move alike; relative to the
+    frame a centre is the absolute one; I42 = I24."""
+    mech = linkcli.loads(KENNEDY.replace("LCD", "360"))
+    q = np.linspace(30.0, 100.0, 6)
+    got = solve(mech, ["I13x", "I13y", "I24x", "I24y", "I42x", "I13fx", "xB", "yB", "xC", "yC"],
+                q=q)
+    A, D = 0j, 600 + 0j
+    B, C = got["xB"] + 1j * got["yB"], got["xC"] + 1j * got["yC"]
+    near(got["I24x"] + 1j * got["I24y"], _meet(A, D, B, C), rel=1e-9, scale=600)
+    near(got["I13x"] + 1j * got["I13y"], _meet(A, B, D, C), rel=1e-9, scale=600)
+    near(got["I42x"], got["I24x"], rel=1e-12, scale=600)
+    near(got["I13fx"], got["I13x"], rel=1e-12, scale=600)
+    # velocities of the two bodies' points at I24 (m, rad/s from the positions' rates)
+    state = mech.solver().velocities(mech.solver().positions(np.radians(q)), np.ones_like(q))
+    w_ab = (state.vel["B"] / state.pos["B"]).imag
+    w_cd = (state.vel["C"] / (state.pos["C"] - 0.6)).imag
+    i24 = (got["I24x"] + 1j * got["I24y"]) / 1000
+    near(1j * w_ab * i24, 1j * w_cd * (i24 - 0.6), rel=1e-9, scale=1.0)
+
+
+def test_a_relative_centre_of_bodies_turning_alike_is_refused(tmp_path, capsys):
+    """A parallelogram (AB and CD equal and parallel) turns AB and CD alike: no I24."""
+    text = KENNEDY.replace("LCD", "300").replace("C: [499.6, 345.7]", "C: [750, 259.8]") \
+        .replace("BC: {points: [B, C], length: 360}", "BC: {points: [B, C], length: 600}") \
+        .replace("  position: [I13x]", "  position: [I24x]")
+    path = tmp_path / "parallelogram.yaml"
+    path.write_text(text)
+    assert main(["solve", str(path)]) == 3
+    err = capsys.readouterr().err
+    assert "'I24x' is undefined at q = 60 deg: body AB relative to CD does not turn" in err
+    bad = KENNEDY.replace("LCD", "360").replace("[AB, CD], component: x", "[AB, AB], component: x")
+    path.write_text(bad)
+    assert main(["solve", str(path)]) == 2
+    assert "a body has no instant centre relative to itself" in capsys.readouterr().err
+
+
 def test_normal_acceleration_is_speed_squared_over_the_radius_of_curvature():
     """The crank pin's path is a circle of radius r: a_n = |v|^2 / r at any rates."""
     got = solve(CRANK_SLIDER, ["vA", "anA"], q=np.linspace(0, 6, 7), qdot=-4.0, qddot=9.0)

@@ -24,7 +24,7 @@ from linkcli.errors import InputError, LinkcliError, SolveError
 from linkcli.forces import motion
 from linkcli.kinematics.closed_form import own_coordinates, where_text
 from linkcli.kinematics.solvers import solver_for
-from linkcli.model.mechanism import REPORT_SECTIONS, VIBRATION, Quantity, split_rate
+from linkcli.model.mechanism import FRAME, REPORT_SECTIONS, VIBRATION, Quantity, split_rate
 from linkcli.forces.statics import unknown_load
 from linkcli.model.units import ANGLE, FORCE, LENGTH, TORQUE
 
@@ -742,23 +742,47 @@ def _rotation(quantity, order, kin, context):
 
 
 def _instant_centre(quantity, kin, context):
-    """I = P + i v_P / omega of the body, P any of its points; refused where it translates."""
+    """I = P + i v_P / omega of the body, P any of its points; relative to another body
+    (``quantity.b``, Kennedy's I_jk), I = P + i (v_P - v'_P) / (omega - omega') with v'_P the
+    velocity of the other body's point at P; refused where the relative motion translates."""
     mech = context.mech
-    body, disc = _spinning(quantity, context)
-    if disc is None:
-        point = mech.bodies[body].points[0]
-        omega = motion.rotation(mech, body, kin.pos, kin.vel)[0]
-    else:
-        point = disc.center
-        omega = motion.disc_spin(mech, disc, kin.pos, kin.vel)[0]
+    point, omega = _spin_at(mech, *_spinning(quantity, context), kin)
+    moving = kin.vel.get(point, 0j)
+    relative = quantity.kind == "instant_centre" and quantity.b not in (None, FRAME)
+    if relative:                     # (the b of an instant_centre_distance is its point)
+        other = Quantity("", "instant_centre", quantity.b, of=_kind_of(mech, quantity.b))
+        anchor, turn = _spin_at(mech, *_spinning(other, context), kin)
+        moving = moving - kin.vel.get(anchor, 0j) - 1j * turn * (kin.pos[point] -
+                                                                  kin.pos[anchor])
+        omega = omega - turn
     still = np.abs(omega) <= AT_REST * context.spin()
     if np.any(still):
+        what = f"body {quantity.a}" + (f" relative to {quantity.b}" if relative else "")
         raise _located(quantity, mech, f"'{quantity.name}' is undefined "
                        f"{where_text(mech, kin.q, np.broadcast_to(still, np.shape(kin.q)))}: "
-                       f"body {quantity.a} does not turn there (omega = 0: it translates, or the "
+                       f"{what} does not turn there (omega = 0: it translates, or the "
                        "mechanism is at rest), so it has no instant centre",
                        hint="ask for a body that turns, or move the driver")
-    return kin.pos[point] + 1j * kin.vel.get(point, 0j) / omega
+    return kin.pos[point] + 1j * moving / omega
+
+
+def _spin_at(mech, body, disc, kin):
+    """(a point of the body, its angular velocity): a link's first point, a disc's centre."""
+    if disc is None:
+        return mech.bodies[body].points[0], motion.rotation(mech, body, kin.pos, kin.vel)[0]
+    return disc.center, motion.disc_spin(mech, disc, kin.pos, kin.vel)[0]
+
+
+def _kind_of(mech, name) -> str:
+    """What a body's name names, as ``Quantity.of`` says it: a disc of ``dynamics: discs:``,
+    a rolling contact or cord (its disc), an actuator, or a link or slider."""
+    if mech.dynamics is not None and name in mech.dynamics.discs:
+        return "disc"
+    if name in mech.rolling:
+        return "rolling"
+    if name in mech.actuators:
+        return "actuator"
+    return "link"
 
 
 def _force(quantity, context):

@@ -313,6 +313,16 @@ class AnswersSection:
         if kind == "velocity_ratio":       # its quantity is looked up once all are read
             return Quantity(name, kind, self.name(arg, where, what="quantity"))
         bodies, spinning = self.raw_bodies()
+        if kind == "instant_centre" and isinstance(arg, list):   # relative to another body
+            body, other = self.two_names(arg, where, "[BODY, OTHER]")
+            self.body(body, where + (0,), spinning, kind)
+            if other != FRAME:
+                self.body(other, where + (1,), spinning, kind)
+            if other == body:
+                raise self.error(where, f"a body has no instant centre relative to itself, "
+                                 f"got {arg!r}", hint="name two bodies, or the frame")
+            return Quantity(name, kind, body, other, component=component,
+                            of=spinning[body][0])
         if kind in ("rotation", "instant_centre"):
             return Quantity(name, kind, self.body(arg, where, spinning, kind), component=component,
                             of=spinning[arg][0])

@@ -82,6 +82,18 @@ def _raise_signal(signum, frame):
     raise _Signalled(signum)
 
 
+def _signal_behind(exc):
+    """The _Signalled that ``exc`` was raised while handling (a writer's ``finally`` that
+    fails when a signal cut it short, e.g. a GIF closed before its first frame), if any."""
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, _Signalled):
+            return exc
+        seen.add(id(exc))
+        exc = exc.__context__
+    return None
+
+
 @contextlib.contextmanager
 def _signals():
     """SIGINT and SIGTERM raise _Signalled while main() runs (in the main thread, and
@@ -688,6 +700,9 @@ def _run(args, prog_name, show_traceback) -> int:
     except Exception as exc:  # a bug: say so briefly, traceback on request
         if isinstance(exc, OSError) and _writing_stdout(exc):   # click's own (--help)
             return _report_output_error(exc)
+        signalled = _signal_behind(exc)
+        if signalled is not None:       # a library's clean-up failed on the way out
+            raise signalled from None
         if show_traceback:
             raise
         _echo("linkcli: internal error (please report it; rerun with --traceback for "

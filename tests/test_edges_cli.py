@@ -424,3 +424,22 @@ def test_reactions_by_newton_agree_with_the_closed_form(fourbar):
         if " on " in name or name.startswith(("slider", "disc")):
             a, b = float(text.split(",")[0]), float(rows[1][name].split(",")[0])
             assert math.isclose(a, b, rel_tol=1e-8, abs_tol=1e-8), name
+
+
+def test_a_writer_that_fails_on_its_way_out_after_sigterm_still_exits_143(fourbar, tmp_path,
+                                                                          monkeypatch, capsys):
+    """A signal that cuts a picture writer short can make its clean-up fail (a GIF closed
+    before its first frame): the exit is still the signal's, with nothing printed."""
+    from linkcli.pictures import plotting
+
+    def cut_short(*args, **kwargs):
+        try:
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(1)                       # the handler raises here
+        finally:
+            raise IndexError("list index out of range")    # the writer's finish()
+
+    monkeypatch.setattr(plotting, "animate", cut_short)
+    from linkcli.cli import main
+    assert main(["animate", str(fourbar), "-o", str(tmp_path / "a.gif")]) == 143
+    assert capsys.readouterr().err == ""

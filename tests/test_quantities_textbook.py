@@ -306,6 +306,45 @@ def test_a_relative_centre_of_bodies_turning_alike_is_refused(tmp_path, capsys):
     assert "a body has no instant centre relative to itself" in capsys.readouterr().err
 
 
+def test_the_point_of_least_speed_on_a_line_of_a_body_is_the_sampled_minimum():
+    """least_speed_at / least_speed of the coupler's line B -> C: the minimum of |v| over
+    points B + t u sampled finely (rigid-body velocities from v_B and omega)."""
+    text = FOURBAR.replace("quantities:\n", "quantities:\n"
+                           "  G: {least_speed_at: [B, C]}\n  vG: {least_speed: [B, C]}\n")
+    mech = linkcli.loads(text)
+    for q in (0.6, 1.0, 1.7):
+        got = solve(mech, ["G", "vG", "xB", "yB", "xC", "yC"], q=q, qdot=2.0)
+        state = mech.solver().velocities(mech.solver().positions(q), 2.0)
+        B, C = state.pos["B"], state.pos["C"]
+        vb = state.vel["B"]
+        omega = ((state.vel["C"] - vb) / (C - B)).imag
+        u = (C - B) / abs(C - B)
+        t = np.linspace(-5.0, 5.0, 2_000_001)
+        speeds = np.abs(vb + 1j * omega * t * u)
+        best = int(np.argmin(speeds))
+        near(got["G"], t[best], rel=1e-5)           # the grid's step is 5e-6 m
+        near(got["vG"], speeds[best], rel=1e-9)
+
+
+def test_the_point_of_least_speed_of_a_translating_body_is_refused(tmp_path, capsys):
+    text = KENNEDY.replace("LCD", "300").replace("C: [499.6, 345.7]", "C: [750, 259.8]") \
+        .replace("BC: {points: [B, C], length: 360}", "BC: {points: [B, C], length: 600}") \
+        .replace("  position: [I13x]", "  velocity: [G, vG]") \
+        .replace("quantities:\n", "quantities:\n  G: {least_speed_at: [B, C]}\n"
+                 "  vG: {least_speed: [B, C]}\n")
+    mech = linkcli.loads(text)
+    v = solve(mech, ["vG"], q=60.0)
+    near(v["vG"], 300 * 10.47, rel=1e-9)         # mm/s: every point moves as B, AB omega
+    path = tmp_path / "parallelogram.yaml"
+    path.write_text(text)
+    assert main(["solve", str(path)]) == 3
+    assert "'G' is undefined at q = 60 deg: the body of B and C does not turn there" in \
+        capsys.readouterr().err
+    path.write_text(text.replace("least_speed_at: [B, C]", "least_speed_at: [A, C]"))
+    assert main(["solve", str(path)]) == 2
+    assert "no body carries both A and C" in capsys.readouterr().err
+
+
 def test_normal_acceleration_is_speed_squared_over_the_radius_of_curvature():
     """The crank pin's path is a circle of radius r: a_n = |v|^2 / r at any rates."""
     got = solve(CRANK_SLIDER, ["vA", "anA"], q=np.linspace(0, 6, 7), qdot=-4.0, qddot=9.0)

@@ -139,9 +139,15 @@ def khurmi_7_2():
     s = slider_crank(0.5, 2.0, math.radians(-45), w2, 0)
     E = s["C"] + 0.5 * e(s["th3"])
     vE, _ = point_motion(s["C"], s["vC"], s["aC"], s["w3"], s["al3"], E)
+    # the rod's instant centre: OB produced meets the normal to P's path (Kennedy); G is the
+    # foot of the perpendicular from it on the rod, the rod's point of least velocity
+    centre = meet(np.zeros(2), s["C"], s["P"], np.array([0.0, 1.0]))
+    u = (s["P"] - s["C"]) / norm(s["P"] - s["C"])
+    arm = centre - s["C"]
     return {"vP": abs(s["xdot"]), "thBPdot": s["w3"], "vE": norm(vE),
             "vRo": abs(w2) * 0.025, "vRc": abs(s["w3"] - w2) * 0.030,
-            "vRp": abs(s["w3"]) * 0.015}
+            "vRp": abs(s["w3"]) * 0.015, "BG": float(arm @ u),
+            "vG": abs(s["w3"]) * abs(arm[0] * u[1] - arm[1] * u[0])}
 
 
 def khurmi_8_1():
@@ -207,7 +213,7 @@ CASES = {
     "khurmi-6-1-instant-centres.yaml": (khurmi_6_1, ()),
     "khurmi-8-4-fourbar-accelerations.yaml": (khurmi_8_4, ()),
     "bevan-3-5-fourbar-imperial.yaml": (bevan_3_5, ()),
-    "khurmi-7-2-rubbing-velocities.yaml": (khurmi_7_2, ("vP",)),
+    "khurmi-7-2-rubbing-velocities.yaml": (khurmi_7_2, ("BG", "vP")),
     "khurmi-8-1-slider-crank-accelerations.yaml": (khurmi_8_1, ("vD",)),
     "bevan-3-3-slider-crank-instant-centre.yaml": (bevan_3_3, ()),
     "bevan-3-4a-slider-crank-accelerations.yaml": (lambda: bevan_3_4(0.0), ()),

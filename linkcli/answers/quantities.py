@@ -38,12 +38,12 @@ BLOCK = 1 << 15
 AT_REST = 1e-9
 #: the display order of kinds whose value is itself a rate (a speed is a velocity)
 LEVEL = {"speed": 1, "relative_speed": 1, "acceleration": 2, "tangential_acceleration": 2,
-         "normal_acceleration": 2, "relative_acceleration": 2}
+         "normal_acceleration": 2, "relative_acceleration": 2, "least_speed": 1}
 #: the kinds of docs/schema.md's textbook quantities (speeds, projections, rotations ...)
 TEXTBOOK = ("speed", "acceleration", "tangential_acceleration", "normal_acceleration",
             "along", "normal_to", "relative", "relative_speed", "relative_acceleration",
             "rotation", "between", "instant_centre", "instant_centre_distance", "reaction",
-            "slider_force", "velocity_ratio")
+            "slider_force", "velocity_ratio", "least_speed", "least_speed_at")
 
 
 @dataclass
@@ -84,7 +84,8 @@ def _needs(mech, quantity, order) -> int:
     kind = quantity.kind
     if kind in ("reaction", "slider_force"):
         return 2 if mech.dynamics is not None else 0
-    if kind in ("instant_centre", "instant_centre_distance", "velocity_ratio"):
+    if kind in ("instant_centre", "instant_centre_distance", "velocity_ratio",
+                "least_speed_at"):
         return 1
     return min(2, LEVEL.get(kind, 0) + order)
 
@@ -643,6 +644,8 @@ def _si(quantity, order, kin, context):
     elif kind in ("angle", "length"):
         value, base = _vector(quantity, kin, order)
         return value, base, order
+    if kind in ("least_speed", "least_speed_at"):
+        return _least_speed(quantity, kin, context)
     if kind in ("speed", "relative_speed"):
         v = rates[1].get(a, 0j) if kind == "speed" else _relative(kin.vel, a, b)
         if order == 0:
@@ -764,6 +767,32 @@ def _instant_centre(quantity, kin, context):
                        "mechanism is at rest), so it has no instant centre",
                        hint="ask for a body that turns, or move the driver")
     return kin.pos[point] + 1j * moving / omega
+
+
+def _least_speed(quantity, kin, context):
+    """The point of least speed on the line through points a, b of one body, P(t) = A + t u
+    (u the unit vector of A -> B): v(t) = v_A + i omega t u, omega = Im((v_B - v_A)/(B - A)),
+    least at t* = -Re(conj(v_A) i omega u) / omega^2 (the foot of the perpendicular from
+    the instant centre); 'least_speed' is |v(t*)| (|v_A| for a body that translates),
+    'least_speed_at' is t*, refused where the body translates (every point moves alike)."""
+    mech = context.mech
+    a, b = quantity.a, quantity.b
+    z = kin.pos[b] - kin.pos[a]
+    u = z / np.abs(z)
+    v_a = kin.vel.get(a, 0j)
+    omega = (_relative(kin.vel, a, b) / z).imag
+    still = np.abs(omega) <= AT_REST * context.spin()
+    safe = np.where(still, 1.0, omega)
+    t = -(np.conj(v_a) * 1j * safe * u).real / (safe * safe)
+    if quantity.kind == "least_speed":
+        return np.where(still, np.abs(v_a), np.abs(v_a + 1j * omega * t * u)), "length", 1
+    if np.any(still):
+        raise _located(quantity, mech, f"'{quantity.name}' is undefined "
+                       f"{where_text(mech, kin.q, np.broadcast_to(still, np.shape(kin.q)))}: "
+                       f"the body of {a} and {b} does not turn there, so all its points move "
+                       "alike and none has the least speed",
+                       hint="move the driver, or ask for least_speed alone")
+    return t, "length", 0
 
 
 def _spin_at(mech, body, disc, kin):

@@ -15,9 +15,12 @@ SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration", "poi
 GEOMETRY = ("angle", "length", "x", "y", "load", "speed", "acceleration",
             "tangential_acceleration", "normal_acceleration", "along", "normal_to", "relative",
             "relative_speed", "relative_acceleration", "rotation", "between", "instant_centre",
-            "instant_centre_distance", "reaction", "slider_force", "velocity_ratio")
+            "instant_centre_distance", "reaction", "slider_force", "velocity_ratio",
+            "least_speed", "least_speed_at")
 OF_POINT = ("speed", "acceleration", "tangential_acceleration", "normal_acceleration")
 OF_PAIR = ("relative", "relative_speed", "relative_acceleration")
+#: of the line through two points of one body: its point of least speed and that speed
+ON_BODY = ("least_speed", "least_speed_at")
 PROJECTIONS = ("along", "normal_to")
 ANGULAR = ("angle", "rotation", "between")
 COMPONENTS = {"relative": ("x", "y"), "instant_centre": ("x", "y"),
@@ -25,9 +28,9 @@ COMPONENTS = {"relative": ("x", "y"), "instant_centre": ("x", "y"),
 #: quantities whose value is itself a rate: a speed is listed with the velocities (its
 #: rate with the accelerations), an acceleration with the accelerations
 LEVEL = {"speed": 1, "relative_speed": 1, "acceleration": 2, "tangential_acceleration": 2,
-         "normal_acceleration": 2, "relative_acceleration": 2}
+         "normal_acceleration": 2, "relative_acceleration": 2, "least_speed": 1}
 #: quantities of the position alone, listed with the positions or the velocities
-EITHER = ("instant_centre", "instant_centre_distance", "velocity_ratio")
+EITHER = ("instant_centre", "instant_centre_distance", "velocity_ratio", "least_speed_at")
 #: the limits of the motion that are of a position quantity (its dead centres)
 STROKES = ("stroke", "time_ratio", "stroke_time")
 #: forces, listed with the statics
@@ -310,6 +313,14 @@ class AnswersSection:
             a, b = self.pair(arg[0], where + (0,), pool)
             c, d = self.pair(arg[1], where + (1,), pool)
             return Quantity(name, kind, a, b, c=c, d=d)
+        if kind in ON_BODY:
+            a, b = self.pair(arg, where, pool)
+            bodies, _ = self.raw_bodies()
+            if not any({a, b} <= set(points) for _, points in bodies.values()):
+                raise self.error(where, f"no body carries both {a} and {b}: {kind} is of the "
+                                 "line through two points of one body",
+                                 hint="name two points of one link or slider")
+            return Quantity(name, kind, a, b)
         if kind == "velocity_ratio":       # its quantity is looked up once all are read
             return Quantity(name, kind, self.name(arg, where, what="quantity"))
         bodies, spinning = self.raw_bodies()

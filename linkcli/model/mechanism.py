@@ -162,19 +162,22 @@ class Quantity:
     - 'speed', 'acceleration', 'tangential_acceleration', 'normal_acceleration' of
       point ``a``;
     - 'along' / 'normal_to': point ``c``'s position component along the unit vector
-      of a->b (or its left normal);
+      of a->b (or its left normal); with ``d``, that of the vector from c to d;
     - 'relative' (``component`` x or y of b - a), 'relative_speed',
       'relative_acceleration' (|v_b - v_a|, |a_b - a_a|);
     - 'rotation': the angle of body ``a`` (``of`` says what the name is: 'link',
       'slider', 'actuator', 'rolling' (a contact's or cord's disc) or 'disc' (of
       ``dynamics: discs:``));
     - 'between': the angle from vector a->b to vector c->d;
-    - 'instant_centre' (``component`` x or y) of body ``a``, and
+    - 'instant_centre' (``component`` x or y) of body ``a`` (relative to body ``b`` when
+      it is given), and
       'instant_centre_distance' from it to point ``b``;
     - 'reaction': the force of the pin at point ``a`` on body ``b`` (``of``: its kind,
       or 'frame'), ``component`` x, y or magnitude; 'slider_force' of slider ``a``,
       ``component`` normal or friction;
     - 'velocity_ratio': d(a)/dq of the quantity named ``a``;
+    - 'least_speed', 'least_speed_at': of the line through points ``a`` and ``b`` of one
+      body, the least speed of its points and where it is (distance from a along a->b);
     - the limits of the motion (kinds in LIMITS) of the quantity named ``a`` over the
       driver range ``span``.
 

@@ -120,6 +120,7 @@ _ALWAYS_LOADER = [           # messages of rules that need the rest of the file
     r"names a rolling contact already",
     r"^a disc cannot roll on itself",
     r"^a belt cannot run from a pulley to itself",
+    r"^no body carries both .*: least_speed",
     r"section to score",
     r"^a harmonic force needs a non-zero",
     r"^a harmonic (force|torque) is",

@@ -193,3 +193,17 @@ sliders:
   B: {point: B, guide: {y: 0}}
 driver: {angle: [O, A], value: 45, rate: 0.5, accel: 1}
 """
+
+
+# a wheel (centre C on a horizontal slider, marker D on its rim) rolling on the floor, driven
+# by the centre's x; tests add their quantities and report
+WHEEL_ON_FLOOR = """
+title: wheel on the floor
+units: {length: mm, angle: deg}
+frame: {O: [0, 0]}
+points: {C: [0, 100], D: [0, 200]}
+sliders: {hub: {point: C, guide: {y: 100}}}
+links: {wheel: {points: [C, D], length: 100}}
+rolling: {floor: {disc: wheel, radius: 100, on: {line: x, side: left}}}
+driver: {x: C, value: 0, rate: 40, accel: -15}
+"""

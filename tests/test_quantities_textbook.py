@@ -28,6 +28,7 @@ import pytest
 import linkcli
 from linkcli.cli import main
 from linkcli.errors import InputError, SolveError
+from closure import WHEEL_ON_FLOOR
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MECH = os.path.join(ROOT, "mechanisms")
@@ -472,16 +473,7 @@ def test_rotation_of_a_rolling_disc_of_dynamics_follows_rolling_without_slip():
     near(solve(mech, ["theta"])["theta"], 0.0, scale=360)
 
 
-WHEEL = """
-title: wheel on the floor
-units: {length: mm, angle: deg}
-frame: {O: [0, 0]}
-points: {C: [0, 100], D: [0, 200]}
-sliders: {hub: {point: C, guide: {y: 100}}}
-links: {wheel: {points: [C, D], length: 100}}
-rolling: {floor: {disc: wheel, radius: 100, on: {line: x, side: left}}}
-driver: {x: C, value: 0, rate: 40, accel: -15}
-quantities:
+WHEEL = WHEEL_ON_FLOOR + """quantities:
   th: {rotation: floor}
   tw: {rotation: wheel}
   Ix: {instant_centre: floor, component: x}

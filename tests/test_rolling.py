@@ -10,21 +10,11 @@ import pytest
 
 import linkcli
 from linkcli.cli import main
+from closure import WHEEL_ON_FLOOR
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
-# a wheel (centre C on a horizontal slider, marker D on its rim) rolling on the floor,
-# driven by the centre's x
-LINE = """
-title: wheel on the floor
-units: {length: mm, angle: deg}
-frame: {O: [0, 0]}
-points: {C: [0, 100], D: [0, 200]}
-sliders: {hub: {point: C, guide: {y: 100}}}
-links: {wheel: {points: [C, D], length: 100}}
-rolling: {floor: {disc: wheel, radius: 100, on: {line: x, side: left}}}
-driver: {x: C, value: 0, rate: 40, accel: -15}
-quantities: {th: {angle: [C, D]}}
+LINE = WHEEL_ON_FLOOR + """quantities: {th: {angle: [C, D]}}
 report: {position: [th]}
 """
 

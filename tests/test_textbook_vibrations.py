@@ -24,12 +24,9 @@ import scipy.linalg as sla
 from linkcli.answers.check import check_file
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from vibration_cases import solve_file  # noqa: E402
+from vibration_cases import close, keys_agree, shipped, solve_file  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-MECH = os.path.join(ROOT, "mechanisms")
 G = 9.81
-RTOL = 1e-9
 
 FILES = {
     "rod": "vib-hibbeler-22-12-rod.yaml",                     # problem 3
@@ -50,7 +47,7 @@ SLUG = LBF / FT
 
 
 def path_of(key):
-    return os.path.join(MECH, FILES[key])
+    return shipped(FILES[key])
 
 
 def solve(key, extra=None, params=None, report=None, **sections):
@@ -58,16 +55,10 @@ def solve(key, extra=None, params=None, report=None, **sections):
     return solve_file(path_of(key), extra, params, report, **sections)
 
 
-def close(got, expected, rtol=RTOL, atol=0.0):
-    assert got == pytest.approx(expected, rel=rtol, abs=atol), (got, expected)
-
-
 # --- every file: its printed keys at their printed precision ----------------------------------
 @pytest.mark.parametrize("key", sorted(FILES))
 def test_file_reproduces_its_printed_keys(key):
-    report = check_file(path_of(key))
-    assert report.error is None, report.error
-    assert not [o for o in report.outcomes if o.status == "fail"]
+    keys_agree(path_of(key))
 
 
 def test_known_key_problems_are_the_truncated_values():

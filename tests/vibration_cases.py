@@ -6,6 +6,7 @@ linearised motion, written from the textbook formula, not from linkcli.
 from __future__ import annotations
 
 import math
+import os
 
 G = 9.81
 
@@ -183,3 +184,28 @@ def solve_file(path, extra=None, params=None, report=None, **sections):
         data["report"]["vibration"] = report
     values = linkcli.loads(yaml.safe_dump(data, sort_keys=False)).solve().values
     return {name: float(np.asarray(v)) for name, v in values.items()}
+
+
+#: the relative tolerance of the textbook vibration tests against their closed forms
+RTOL = 1e-9
+MECHANISMS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                          "mechanisms")
+
+
+def shipped(name):
+    """The path of the shipped mechanism file ``name``."""
+    return os.path.join(MECHANISMS, name)
+
+
+def close(got, expected, rtol=RTOL, atol=0.0):
+    import pytest
+    assert got == pytest.approx(expected, rel=rtol, abs=atol), (got, expected)
+
+
+def keys_agree(path):
+    """``check`` of the file ``path``: it solves and no printed value fails (the report)."""
+    from linkcli.answers.check import check_file
+    report = check_file(path)
+    assert report.error is None, report.error
+    assert not [o for o in report.outcomes if o.status == "fail"]
+    return report

@@ -30,7 +30,7 @@ from linkcli.answers import quantities
 from linkcli.answers import sweep as sweep_mod
 from linkcli.answers.formats import fmt
 from linkcli.errors import Caution, InputError, SolveError
-from linkcli.model.mechanism import LIMITS, limit_refusal, split_rate
+from linkcli.model.mechanism import limit_refusal, split_rate
 
 #: grid intervals over the range: extremes closer together than a grid step are not told apart
 GRID = 3600
@@ -380,8 +380,7 @@ def _strokes(found: Limits, probe) -> None:
 
 # --- named quantities of the report ----------------------------------------------------------
 def is_limit(mech, name) -> bool:
-    quantity = mech.quantities.get(name)
-    return quantity is not None and quantity.kind in LIMITS
+    return getattr(mech.quantities.get(name), "limit", False)
 
 
 def pointwise(mech, names):

@@ -26,6 +26,7 @@ from linkcli.kinematics.closed_form import own_coordinates, where_text
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import FRAME, REPORT_SECTIONS, VIBRATION, Quantity, split_rate
 from linkcli.forces.statics import unknown_load
+from linkcli.input.report import LEVEL
 from linkcli.model.units import ANGLE, FORCE, LENGTH, TORQUE
 
 TWO_PI = 2 * math.pi
@@ -36,9 +37,6 @@ BLOCK = 1 << 15
 #: velocity is at most AT_REST times the largest rate of the mechanism (the largest angular
 #: velocity of its bodies, or its largest speed over its size)
 AT_REST = 1e-9
-#: the display order of kinds whose value is itself a rate (a speed is a velocity)
-LEVEL = {"speed": 1, "relative_speed": 1, "acceleration": 2, "tangential_acceleration": 2,
-         "normal_acceleration": 2, "relative_acceleration": 2, "least_speed": 1}
 #: the kinds of docs/schema.md's textbook quantities (speeds, projections, rotations ...)
 TEXTBOOK = ("speed", "acceleration", "tangential_acceleration", "normal_acceleration",
             "along", "normal_to", "relative", "relative_speed", "relative_acceleration",
@@ -193,21 +191,12 @@ class Plan:
         names need, refusing unassembled and singular positions, and evaluate them."""
         solver = solver_for(mech, self.method, self.tol)
         order = self.order(mech)
-        driver = mech.driver
-        f0, f1, f2 = self.q_factors
+        driver = self._driver_si(mech.driver, q, qdot, qddot)
         if q is not None and np.size(q) > BLOCK and self._blockwise:
-            result = self._in_blocks(mech, solver, order, q, qdot, qddot)
+            result = self._in_blocks(mech, solver, order, *driver)
             if result is not None:
                 return result
-        kin = solver.positions(driver.value if q is None else np.asarray(q, float) * f0)
-        solver.check(kin, velocities=False)
-        if order >= 1:
-            solver.velocities(kin, driver.rate if qdot is None else np.asarray(qdot, float) * f1)
-            solver.check(kin, velocities=True)
-        if order >= 2:
-            solver.accelerations(kin, driver.accel if qddot is None else
-                                 np.asarray(qddot, float) * f2)
-        result = self.collect(mech, solver, kin)
+        result = self.collect(mech, solver, _solved(solver, order, *driver))
         if q is None:       # the file's own position: what the figure check says of it
             from linkcli.answers.validate import figure_cautions
             result.cautions = figure_cautions(mech) if self.method == "closed" else []
@@ -221,32 +210,29 @@ class Plan:
         return self.method == "closed" and not self.generic and not self.wants_loads \
             and not self.points
 
-    def _in_blocks(self, mech, solver, order, q, qdot, qddot):
+    def _driver_si(self, driver, q, qdot, qddot) -> tuple:
+        """(q, q', q'') in SI from display units, the file's values where not given."""
+        f0, f1, f2 = self.q_factors
+        return (driver.value if q is None else np.asarray(q, float) * f0,
+                driver.rate if qdot is None else np.asarray(qdot, float) * f1,
+                driver.accel if qddot is None else np.asarray(qddot, float) * f2)
+
+    def _in_blocks(self, mech, solver, order, qs, qd, qdd):
         """:meth:`evaluate` of a long 1-D array of driver values, BLOCK positions at a time:
         the arrays of a block stay in the processor's cache, several times faster than
         passes over arrays of millions.  The values are the whole-array ones (every
         operation is position by position).  None when anything is refused or not of the
         driver values' shape: the whole-array path then decides, and words its errors for
-        every position at once."""
-        driver = mech.driver
-        f0, f1, f2 = self.q_factors
+        every position at once.  ``qs``, ``qd``, ``qdd``: the driver's values and rates (SI)."""
+        if qs.ndim != 1 or solver.n != 1 or any(np.ndim(x) and np.shape(x) != qs.shape
+                                                for x in (qd, qdd)):
+            return None
         try:
-            qs = np.asarray(q, float) * f0
-            qd = driver.rate if qdot is None else np.asarray(qdot, float) * f1
-            qdd = driver.accel if qddot is None else np.asarray(qddot, float) * f2
-            if qs.ndim != 1 or solver.n != 1 or any(np.ndim(x) and np.shape(x) != qs.shape
-                                                    for x in (qd, qdd)):
-                return None
             table = np.empty((len(self.names), qs.size))
             for lo in range(0, qs.size, BLOCK):
                 hi = min(qs.size, lo + BLOCK)
-                part = solver.positions(qs[lo:hi])
-                solver.check(part, velocities=False)
-                if order >= 1:
-                    solver.velocities(part, qd[lo:hi] if np.ndim(qd) else qd)
-                    solver.check(part, velocities=True)
-                if order >= 2:
-                    solver.accelerations(part, qdd[lo:hi] if np.ndim(qdd) else qdd)
+                part = _solved(solver, order, qs[lo:hi], qd[lo:hi] if np.ndim(qd) else qd,
+                               qdd[lo:hi] if np.ndim(qdd) else qdd)
                 for i, (fn, _) in enumerate(self.steps):
                     fn(part, table[i, lo:hi])
             if not np.isfinite(table).all():
@@ -304,13 +290,22 @@ class Later:
             raise AttributeError(name)
         if self._kin is None:
             solver, qd, qdd, order = self._solve
-            kin = solver.positions(self.q)
-            if order >= 1:
-                solver.velocities(kin, qd)
-            if order >= 2:
-                solver.accelerations(kin, qdd)
-            self._kin = kin
+            self._kin = _solved(solver, order, self.q, qd, qdd)
         return getattr(self._kin, name)
+
+
+def _solved(solver, order, q, qd, qdd):
+    """The kinematics at driver values ``q`` (SI) solved as far as ``order`` (0 positions, 1
+    velocities at ``qd``, 2 accelerations at ``qdd``), unassembled and singular positions
+    refused (a located SolveError)."""
+    kin = solver.positions(q)
+    solver.check(kin, velocities=False)
+    if order >= 1:
+        solver.velocities(kin, qd)
+        solver.check(kin, velocities=True)
+    if order >= 2:
+        solver.accelerations(kin, qdd)
+    return kin
 
 
 def _collect_each(mech, solver, kin, names, result):

@@ -9,7 +9,6 @@ from __future__ import annotations
 from linkcli.answers import quantities
 from linkcli.answers.quantities import Result
 from linkcli.errors import InputError
-from linkcli.model.mechanism import LIMITS
 
 
 def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
@@ -32,4 +31,4 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
 def _asks_limits(mech, names) -> bool:
     """Whether ``names`` (default: the report's) hold a limit of the motion."""
     names = quantities.report_names(mech) if names is None else names
-    return any(getattr(mech.quantities.get(n), "kind", None) in LIMITS for n in names)
+    return any(getattr(mech.quantities.get(n), "limit", False) for n in names)

@@ -124,7 +124,7 @@ class AnswersSection:
                 del quantities[name]
                 self.failed.add(name)
         for name, q in list(quantities.items()):
-            if q.kind in LIMITS and not self.block(self.limit_of, q, quantities):
+            if q.limit and not self.block(self.limit_of, q, quantities):
                 del quantities[name]
                 self.failed.add(name)
         return quantities
@@ -535,7 +535,7 @@ class AnswersSection:
                 raise self.error(path, f"'{name}' is not a load", hint="statics lists loads")
             return True
         quantity = quantities.get(base[0]) if base is not None else None
-        if quantity is not None and quantity.kind in LIMITS and base[1] == 0:
+        if quantity is not None and quantity.limit and base[1] == 0:
             return True             # one value for the range: any kinematic section
         if quantity is None or quantity.kind == "load" or (
                 base[1] != order and quantity.kind not in LEVEL and quantity.kind not in EITHER

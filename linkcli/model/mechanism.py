@@ -209,6 +209,11 @@ class Quantity:
         return 1 if self.kind in ("speed", "relative_speed") else 0
 
     @property
+    def limit(self) -> bool:
+        """Whether it is a limit of the motion (LIMITS): one value for a range of the driver."""
+        return self.kind in LIMITS
+
+    @property
     def angular(self) -> bool:
         """Whether the quantity is an angle (compared modulo a turn, unless signed)."""
         return self.kind in ("angle", "rotation", "between")
@@ -337,7 +342,7 @@ def limit_refusal(name: str, quantity: Quantity, order: int) -> str | None:
     zero of its rate, or None when they can: it needs a rate the solver computes."""
     if order < quantity.rates:
         return None
-    if quantity.kind in LIMITS:
+    if quantity.limit:
         what = "a limit of the motion itself (one value for the whole range)"
     elif order == 2 or quantity.kind in ("acceleration", "tangential_acceleration",
                                          "normal_acceleration", "relative_acceleration") \

@@ -59,11 +59,16 @@ class FileReport:
         return sum(o.status == "pass" and o.within for o in self.outcomes)
 
 
-def agrees(computed: float, printed: float, decimals: int, period: float | None) -> bool:
+def _gap(computed: float, printed: float, period: float | None) -> float:
+    """|computed - printed|, modulo a turn ``period`` for an angle."""
     diff = computed - printed
     if period:
         diff = (diff + period / 2) % period - period / 2
-    return abs(diff) <= 0.5 * 10.0 ** -decimals + ROUND_SLACK * max(1.0, abs(printed))
+    return abs(diff)
+
+
+def agrees(computed: float, printed: float, decimals: int, period: float | None) -> bool:
+    return _gap(computed, printed, period) <= 0.5 * 10.0 ** -decimals + ROUND_SLACK * max(1.0, abs(printed))
 
 
 def within(computed: float, printed: float, tolerance, period: float | None) -> bool:
@@ -72,11 +77,8 @@ def within(computed: float, printed: float, tolerance, period: float | None) -> 
     (relative); angles compared modulo a full turn."""
     if tolerance is None:
         return False
-    diff = computed - printed
-    if period:
-        diff = (diff + period / 2) % period - period / 2
     bound = tolerance.value * abs(printed) if tolerance.relative else tolerance.value
-    return abs(diff) <= bound * (1.0 + ROUND_SLACK) + ROUND_SLACK * max(1.0, abs(printed))
+    return _gap(computed, printed, period) <= bound * (1.0 + ROUND_SLACK) + ROUND_SLACK * max(1.0, abs(printed))
 
 
 def collect(paths) -> list[str]:

@@ -95,13 +95,17 @@ def to_json(result) -> str:
 
 
 def to_csv(result, decimals: int | None = None) -> str:
+    rows = [[name, repr(_scalar(result, name)) if decimals is None else
+             fmt(_scalar(result, name), decimals), result.units[name]] for name in result.values]
+    return csv_text(["quantity", "value", "unit"], rows)
+
+
+def csv_text(header, rows) -> str:
+    """``header`` and ``rows`` as CSV text, one line each, ending with a newline."""
     out = io.StringIO()
     writer = csv.writer(out, lineterminator="\n")
-    writer.writerow(["quantity", "value", "unit"])
-    for name in result.values:
-        value = _scalar(result, name)
-        writer.writerow([name, repr(value) if decimals is None else fmt(value, decimals),
-                         result.units[name]])
+    writer.writerow(header)
+    writer.writerows(rows)
     return out.getvalue()
 
 

@@ -28,7 +28,7 @@ import numpy as np
 
 from linkcli.answers import quantities
 from linkcli.answers import sweep as sweep_mod
-from linkcli.answers.formats import fmt
+from linkcli.answers.formats import csv_text, fmt
 from linkcli.errors import Caution, InputError, SolveError
 from linkcli.model.mechanism import limit_refusal, split_rate
 
@@ -523,13 +523,7 @@ def render(found_list, form: str, decimals: int) -> str:
     header = ["quantity", "what", f"q [{q_unit}]", "value", "unit"]
     body = [row for found in found_list for row in rows(found, decimals)]
     if form == "csv":
-        import csv
-        import io
-        out = io.StringIO()
-        writer = csv.writer(out, lineterminator="\n")
-        writer.writerow(header)
-        writer.writerows(body)
-        return out.getvalue().rstrip("\n")
+        return csv_text(header, body).rstrip("\n")
     from tabulate import tabulate
     return tabulate(body, headers=header, disable_numparse=True)
 

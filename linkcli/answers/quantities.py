@@ -177,6 +177,11 @@ class Plan:
         self.q_factors = [mech.units.display(driver, i)[1] for i in range(3)]
         self.steps = [_step(mech, name) for name in self.names]
         self.generic = any(fn is None for fn, _ in self.steps)
+        angles = {i: fn for i, (fn, _) in enumerate(self.steps) if isinstance(fn, AngleRow)}
+        #: kernel(kin, table) writing rows of the table: the angles together, then each other
+        self.kernels = ([Angles(angles)] if angles else []) + \
+            [_Row(i, fn) for i, (fn, _) in enumerate(self.steps)
+             if fn is not None and not isinstance(fn, AngleRow)]
         l_unit, l_factor = mech.units.display("length", 0)
         self.points = [(p, l_unit, l_factor) for p in mech.report.get("points", [])]
 
@@ -233,8 +238,8 @@ class Plan:
                 hi = min(qs.size, lo + BLOCK)
                 part = _solved(solver, order, qs[lo:hi], qd[lo:hi] if np.ndim(qd) else qd,
                                qdd[lo:hi] if np.ndim(qdd) else qdd)
-                for i, (fn, _) in enumerate(self.steps):
-                    fn(part, table[i, lo:hi])
+                for kernel in self.kernels:
+                    kernel(part, table[:, lo:hi])
             if not np.isfinite(table).all():
                 return None
         except LinkcliError:
@@ -253,13 +258,12 @@ class Plan:
         loads = _loads(mech, solver, kin, self.names) if self.wants_loads else {}
         context = Context(mech, solver, kin) if self.generic else None
         table = np.empty((len(self.names),) + shape)
+        for kernel in self.kernels:
+            kernel(kin, table)
         for i, (name, (fn, unit)) in enumerate(zip(self.names, self.steps)):
-            row = table[i, ...]
             if fn is None:
                 value, unit = _value(mech, name, kin, loads, context)
-                row[...] = value
-            else:
-                fn(kin, row)
+                table[i, ...] = value
             result.units[name] = unit
         if not np.isfinite(table).all():
             _require_finite(mech, dict(zip(self.names, table)))
@@ -354,11 +358,8 @@ def _step(mech, name):
             z = (kin.pos, kin.vel, kin.acc)[order].get(a, 0j)
             _put(np.real(z) if real else np.imag(z), factor, kin, out)
         return coordinate, unit
-    if base == "angle" and order == 0:
-        return _angle_kernel(a, b, factor, quantity.signed), unit
-
     if base == "angle":
-        return _angle_rate_kernel(a, b, factor, order), unit
+        return AngleRow(a, b, order, factor, quantity.signed and order == 0), unit
     signed = quantity.signed and order == 0
 
     def vector(kin, out):
@@ -367,46 +368,118 @@ def _step(mech, name):
     return vector, unit
 
 
-def _angle_kernel(a, b, factor, signed):
-    """The angle of P_b - P_a in [0, 2 pi) (``signed``: in (-pi, pi]) written into ``out``:
-    ``wrap_angle(np.angle(z), principal=True)`` done in place.  An angle <= 0 gains 2 pi;
-    one within 1e-12 rad of 2 pi (+-0 included) is 0."""
-    def angle(kin, out):
-        z = _rates(kin, a, b, rate=False)[0]
-        if getattr(z, "shape", ()) != out.shape:
-            value = wrap_angle(np.angle(z), principal=True)
-            _put(signed_angle(value) if signed else value, factor, kin, out)
-            return
-        np.arctan2(z.imag, z.real, out=out)
-        np.add(out, TWO_PI, out=out, where=out <= 0)
-        np.copyto(out, 0.0, where=out > TWO_PI - 1e-12)
-        if signed:
-            np.subtract(out, TWO_PI, out=out, where=out > math.pi)
-        if factor != 1:
-            np.divide(out, factor, out=out)
-    return angle
+class _Row:
+    """A name's own kernel(kin, out) writing row ``i`` of the table."""
+
+    __slots__ = ("i", "fn")
+
+    def __init__(self, i, fn):
+        self.i, self.fn = i, fn
+
+    def __call__(self, kin, table):
+        self.fn(kin, table[self.i, ...])
 
 
-def _angle_rate_kernel(a, b, factor, order):
-    """phi' = Im w (``order`` 1) or phi'' = Im(z''/z) - 2 Re w Im w (2) of z = P_b - P_a,
-    w = z'/z, written into ``out`` in display units."""
-    def angle_rate(kin, out):
-        z, w = _rates(kin, a, b)
-        if getattr(w, "shape", ()) != out.shape:
-            _put(_vector_rate(kin, a, b, order, True), factor, kin, out)
-            return
-        if order == 1:
-            _put(w.imag, factor, kin, out)
-            return
-        dw = _relative(kin.acc, a, b) / z
-        np.multiply(w.real, w.imag, out=out)
-        out *= -2.0
-        out += dw.imag
-        if factor != 1:
-            out /= factor
-        else:
-            out += 0.0
-    return angle_rate
+@dataclass(frozen=True)
+class AngleRow:
+    """A name that is the angle of z = P_b - P_a (``order`` 0) or one of its rates (1, 2), in
+    display units (SI over ``factor``); ``signed``: in (-pi, pi] instead of [0, 2 pi)."""
+
+    a: str
+    b: str
+    order: int
+    factor: float
+    signed: bool = False
+
+
+class Angles:
+    """Every :class:`AngleRow` of a plan, evaluated together: the vectors z = P_b - P_a
+    stacked in one (vectors x positions) array, their rates z', z'' likewise, so each
+    operation below is one pass over all the angles at once.
+
+    Angles: arctan2 in (-pi, pi], those <= 0 gaining 2 pi, those within 1e-12 rad of
+    2 pi (+-0 included) being 0 (:func:`wrap_angle`).  Rates, with w = z'/z:
+    phi' = Im w, phi'' = Im(z''/z) - 2 Re w Im w.  A -0.0 is written as 0.0.  Element by
+    element these are the operations of :func:`_value`, so the values are the same.
+    """
+
+    def __init__(self, rows: dict):
+        """``rows``: table row -> AngleRow."""
+        pairs = list(dict.fromkeys((r.a, r.b) for r in rows.values()))
+        self.pairs = pairs
+        self.slots = []                 # (order, table rows, vector indices, factors, signed)
+        for order in (0, 1, 2):
+            mine = [(i, r) for i, r in rows.items() if r.order == order]
+            if not mine:
+                continue
+            index = [pairs.index((r.a, r.b)) for _, r in mine]
+            if index == list(range(len(pairs))):
+                index = slice(None)         # every vector, in order: no gather
+            factors = np.array([r.factor for _, r in mine])
+            signed = np.array([r.signed for _, r in mine])
+            at = [i for i, _ in mine]
+            if at == list(range(at[0], at[-1] + 1)):
+                at = slice(at[0], at[-1] + 1)     # written in place, no scatter
+            self.slots.append((order, at, index, None if np.all(factors == 1) else factors,
+                               signed if signed.any() else None))
+        self.rates = max(order for order, *_ in self.slots)
+
+    def __call__(self, kin, table):
+        shape = table.shape[1:]
+        z = self._stack(kin.pos, shape, 0j)
+        w = zz = None
+        if self.rates >= 1:
+            w = self._stack(kin.vel, shape, 0j)
+            w /= z
+        if self.rates >= 2:
+            zz = self._stack(kin.acc, shape, 0j)
+            zz /= z
+        column = (-1,) + (1,) * len(shape)      # a value per vector, down the table
+        for order, rows, index, factors, signed in self.slots:
+            if factors is not None:
+                factors = factors.reshape(column)
+            out = table[rows] if type(rows) is slice else \
+                np.empty((len(rows),) + shape)
+            if order == 0:
+                v = z[index]
+                np.arctan2(v.imag, v.real, out=out)
+                np.add(out, TWO_PI, out=out, where=out <= 0)
+                np.copyto(out, 0.0, where=out > TWO_PI - 1e-12)
+                if signed is not None:
+                    np.subtract(out, TWO_PI, out=out, where=(out > math.pi) & signed.reshape(column))
+            elif order == 1:
+                v = w[index].imag
+                if factors is None:
+                    np.add(v, 0.0, out=out)
+                else:
+                    np.divide(v, factors, out=out)
+            else:
+                v = w[index]
+                np.multiply(v.real, v.imag, out=out)
+                out *= -2.0
+                out += zz[index].imag
+                if factors is not None:
+                    out /= factors
+                else:
+                    out += 0.0
+            if order == 0 and factors is not None:
+                out /= factors
+            if type(rows) is not slice:
+                table[rows] = out
+
+    def _stack(self, points, shape, zero):
+        """(P_b - P_a) of every pair, stacked; an absent point (fixed: no rates) is 0."""
+        out = np.empty((len(self.pairs),) + shape, complex)
+        for i, (a, b) in enumerate(self.pairs):
+            row = out[i, ...]
+            pa, pb = points.get(a), points.get(b)
+            if pa is None:
+                row[...] = zero if pb is None else pb
+            elif pb is None:
+                np.negative(pa, out=row)
+            else:
+                np.subtract(pb, pa, out=row)
+        return out
 
 
 def _put(value, factor, kin, out):

@@ -85,7 +85,8 @@ class Kinematics:
     pos: dict = field(default_factory=dict)
     vel: dict = field(default_factory=dict)
     acc: dict = field(default_factory=dict)
-    short: dict = field(default_factory=dict)     # group index -> shortfall (m) array
+    short: dict = field(default_factory=dict)     # group index -> shortfall (m) array, where
+    #                                               some position might not close
     measure: dict = field(default_factory=dict)   # group index -> conditioning array
     flat: dict = field(default_factory=dict)      # group index -> toggle within rounding
     linear: dict = field(default_factory=dict, repr=False)  # group index -> rate-system inverse
@@ -391,9 +392,9 @@ class Solver:
                 continue
             p, short, *flat = self._position(group, pos, q)
             pos[group.point] = p
-            if short is not None:
-                kin.short[index] = short
-            if flat and flat[0].any():
+            if short is not None and (type(short) is not float or short != 0.0):
+                kin.short[index] = short        # (the number 0.0: every position closes)
+            if flat and flat[0] is not False and flat[0].any():
                 kin.flat[index] = flat[0]
         return kin
 

@@ -6,14 +6,16 @@ and signed offset ``e = value/|C - B|`` to the left of B->C.
 
 Each solver returns ``(P, short)``: ``short`` is the length by which the
 links fail to close (> 0 means the dyad cannot be assembled there; the
-position returned is then the nearest, toggle-like one).  A discriminant that is
+position returned is then the nearest, toggle-like one), the number 0.0 where
+every position closes.  A discriminant that is
 negative only by rounding is treated as zero, so a toggle position returns a
 clean point, never NaN.
 
 With ``flat=True`` they also return where the discriminant is zero within the
 rounding it carries (TOGGLE times the magnitudes its terms and the points'
 coordinates bring): an exact toggle, whose computed square root is rounding
-noise of order sqrt(eps) and must not be mistaken for a regular position.
+noise of order sqrt(eps) and must not be mistaken for a regular position; the
+value False when no discriminant comes near.
 """
 from __future__ import annotations
 
@@ -54,10 +56,6 @@ def cis(angle):
     return out
 
 
-def _no_short(*arrays):
-    return np.zeros(np.broadcast(*arrays).shape)
-
-
 def circle_circle(a, r1, b, r2, branch, flat=False):
     """P with |P - A| = r1, |P - B| = r2; branch +1 puts P left of A->B.
 
@@ -66,29 +64,31 @@ def circle_circle(a, r1, b, r2, branch, flat=False):
     """
     d_vec = b - a
     d2 = np.asarray(d_vec.real * d_vec.real + d_vec.imag * d_vec.imag)
-    if (d2 == 0).any():
+    least = d2.min()                    # NaN if any is NaN
+    if least == 0:
         p, short = _circle_circle_safe(a, r1, b, r2, branch)
         return (p, short, np.abs(d2) == 0) if flat else (p, short)
     r1sq = r1 * r1
     t = (r1sq - r2 * r2 + d2) / (2.0 * d2)
     along2, across2 = t * t, r1sq / d2          # (a/d)^2 and (r1/d)^2
     e = across2 - along2
-    negative = (e < 0).any()
+    lowest = e.min()
+    negative = bool(lowest < 0)
     if negative:
         s, gap = _root(e, np.maximum(across2, along2))
         d = np.sqrt(d2)
         short = np.where(gap > 0, np.maximum(d - (r1 + r2), np.abs(r1 - r2) - d), 0.0)
     else:
-        s, short = np.sqrt(e), _no_short(d2, r1)
+        s, short = np.sqrt(e), 0.0
     p = a + d_vec * _complex(t, s if branch > 0 else -s)
     if not flat:
         return p, short
     if not negative:                    # e >= 0: the noise is below this bound everywhere
-        least = float(d2.min())
+        least = float(least)
         top = _top(r1)
-        if _clear(e, TOGGLE * top * top / least * (1.0 + (_top(a) + _top(b)) /
-                                                   math.sqrt(least))):
-            return p, short, np.zeros(e.shape, bool)
+        if _clear(lowest, TOGGLE * top * top / least * (1.0 + (_top(a) + _top(b)) /
+                                                    math.sqrt(least))):
+            return p, short, False
     reach = (np.abs(a) + np.abs(b)) / np.sqrt(d2)          # coordinates against the span
     noise = TOGGLE * np.maximum(across2, along2) * (1.0 + reach)
     return p, short, np.abs(e) <= noise
@@ -129,12 +129,13 @@ def circle_line(a, r, b, c, value, branch, flat=False, frame=None):
         np.subtract(r * r, disc, out=disc)
     else:
         disc = r * r - disc
-    negative = _anywhere(disc < 0)
+    lowest = disc.min() if type(disc) is np.ndarray else disc
+    negative = bool(lowest < 0)
     if negative:
         s, gap = _root(disc, np.maximum(r * r, dist * dist))
         short = np.where(gap > 0, np.abs(dist) - r, 0.0)
     else:
-        s, short = np.sqrt(disc), _no_short(disc)
+        s, short = np.sqrt(disc), 0.0
     if writable(s, rel):
         along = np.add(rel.real, s, out=s) if branch > 0 else np.subtract(rel.real, s, out=s)
     else:
@@ -144,8 +145,8 @@ def circle_line(a, r, b, c, value, branch, flat=False, frame=None):
         return p, short
     if not negative:                    # |d| <= r: every noise below the bound
         top = _top(r)
-        if _clear(disc, TOGGLE * (top * top + top * (_top(a) + _top(b) + _top(e) + top))):
-            return p, short, np.zeros(np.shape(disc), bool)
+        if _clear(lowest, TOGGLE * (top * top + top * (_top(a) + _top(b) + _top(e) + top))):
+            return p, short, False
     # TOGGLE (r^2 + |d| (|A| + |B| + |e| + r)), the same operations in place
     noise = np.abs(a)
     if writable(noise, b, e, r, dist):
@@ -165,12 +166,11 @@ def _top(x) -> float:
     return float(np.abs(x).max()) if type(x) is np.ndarray else abs(x)
 
 
-def _clear(disc, bound) -> bool:
-    """Whether no discriminant (all >= 0) is within ``bound``, a bound of the rounding
-    each carries: then none is a toggle.  Twice the bound covers the rounding of the
-    bound itself; NaN anywhere says no (the exact test decides)."""
-    least = disc.min() if isinstance(disc, np.ndarray) else disc
-    return bool(least > 2.0 * bound)
+def _clear(lowest, bound) -> bool:
+    """Whether no discriminant (all >= 0, the least being ``lowest``) is within ``bound``,
+    a bound of the rounding each carries: then none is a toggle.  Twice the bound covers
+    the rounding of the bound itself; NaN anywhere says no (the exact test decides)."""
+    return bool(lowest > 2.0 * bound)
 
 
 def writable(x, *others) -> bool:

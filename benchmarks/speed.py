@@ -10,7 +10,10 @@ at N = 360, 10^4, 10^6 and 10^7 driver positions:
   resident memory is read);
 - hand-written NumPy of the same closed form (the same blocks at 10^7), the speed to
   compare with;
-- peers (pylinkage) when importable.
+- peers when importable: pylinkage's numba path (``Linkage.step_fast_with_kinematics``,
+  joint coordinates and their two rates, no angles) for the four-bar and the
+  crank-slider (it has no link of driven length for the six-bar), up to 10^6; its
+  agreement with linkcli's joint positions and velocities is printed beside it.
 
 Next to the speed, the accuracy on the 10^4 grid: the closure residual of linkcli's
 positions (every constraint of every group, relative to the square of the mechanism's
@@ -51,6 +54,67 @@ SIZES = (360, 10 ** 4, 10 ** 6, 10 ** 7)
 BLOCK = 16384           # positions per block at 10^7 (answers.sweep.BLOCK)
 ACCURACY_N = 10 ** 4
 PEERS = ("pylinkage",)
+
+
+# --- peers -------------------------------------------------------------------------------
+def pylinkage_peer(key):
+    """pylinkage's numba path for mechanism ``key``: (run(n), check()) or None.
+
+    ``run(n)`` steps the crank n times (the crank turns 2 pi / 360 per step; joint
+    positions, velocities and accelerations at every step); ``check()`` gives the largest
+    difference of its output joint's position and velocity from linkcli's at the same
+    crank angles (relative to the largest).  None where pylinkage cannot state the
+    mechanism (the six-bar's driven length) or is not installed."""
+    try:
+        from pylinkage.actuators import Crank
+        from pylinkage.components import Ground
+        from pylinkage.dyads import RRPDyad, RRRDyad
+        from pylinkage.simulation import Linkage
+    except ImportError:
+        return None
+    step = 2 * math.pi / 360
+    if key not in ("four-bar", "crank-slider"):
+        return None
+
+    def build():
+        """(linkage, output joint's index, first crank angle), the crank at its start."""
+        if key == "four-bar":
+            start, rate, accel = 0.0, 5 * math.pi, 0.0
+            a0 = Ground(0.0, 0.0, name="A0")
+            b0 = Ground(0.425 * math.cos(7 / 4 * math.pi), 0.425 * math.sin(7 / 4 * math.pi),
+                        name="B0")
+            crank = Crank(anchor=a0, radius=0.1, angular_velocity=step, initial_angle=start,
+                          name="A")
+            parts = [a0, b0, crank, RRRDyad(crank.output, b0, distance1=0.315, distance2=0.5,
+                                             name="B")]
+        else:
+            start, rate, accel = math.pi / 4, 0.5, 1.0
+            o, x = Ground(0.0, 0.0, name="O"), Ground(1.0, 0.0, name="X")
+            crank = Crank(anchor=o, radius=1.0, angular_velocity=step, initial_angle=start,
+                          name="A")
+            parts = [o, x, crank, RRPDyad(crank.output, o, x, distance=math.sqrt(2), x=1.93,
+                                          y=0.0, name="B")]
+        linkage = Linkage(parts, name=key)
+        linkage.set_input_velocity(crank, rate, accel)
+        return linkage, len(parts) - 1, start, rate
+
+    timed = build()[0]
+
+    def run(n):
+        return timed.step_fast_with_kinematics(iterations=n)
+
+    def check():
+        linkage, joint, start, rate = build()
+        pos, vel, _ = linkage.step_fast_with_kinematics(iterations=360)
+        q = start + step * np.arange(1, 361)          # one step before each output
+        solver = case(key).linkage.solver()
+        kin = solver.velocities(solver.positions(q), rate)
+        worst = 0.0
+        for got, mine in ((pos, kin.pos["B"]), (vel, kin.vel["B"])):
+            z = got[:, joint, 0] + 1j * got[:, joint, 1]
+            worst = max(worst, float(np.max(np.abs(z - mine)) / np.max(np.abs(mine))))
+        return worst
+    return run, check
 
 
 # --- hand-written closed forms: values and their first and second time rates --------------
@@ -257,22 +321,32 @@ def main(argv=None):
         return 0
     sizes = [n for n in SIZES if not args.quick or n <= 10 ** 6]
     os.makedirs(OUT, exist_ok=True)
-    rows = []
+    rows, checks = [], {}
     for key in args.mechanism or CASES:
         c = case(key)
         c.solve(c.grid(8))
         closure, fd_mine, fd_hand, agree = accuracy(c)
         print(f"{key}: closure {closure:.1e}, rates vs FD {fd_mine:.1e} (hand {fd_hand:.1e}), "
               f"linkcli - hand {agree:.1e}", flush=True)
+        peer = pylinkage_peer(key)
+        if peer is not None:
+            peer[0](8)                  # compiled (numba) before timing
+            checks[key] = peer[1]()
+            print(f"  pylinkage: joint positions and velocities within {checks[key]:.1e} of "
+                  "linkcli's", flush=True)
         for n in sizes:
             row = {"mechanism": key, "N": n, "closure": closure, "fd": fd_mine,
                    "fd_hand": fd_hand, "agree": agree}
             if n <= 10 ** 6:
                 q = c.grid(n)
                 budget = 2.0 if n < 10 ** 6 else 1.0
-                mine, hand = median_times((lambda: c.solve(q), lambda: c.by_hand(q)), budget,
-                                          args.repeat)
-                row["linkcli"], row["hand"] = mine / n, hand / n
+                funcs = [lambda: c.solve(q), lambda: c.by_hand(q)]
+                if peer is not None:
+                    funcs.append(lambda: peer[0](n))
+                times = median_times(funcs, budget, args.repeat)
+                row["linkcli"], row["hand"] = times[0] / n, times[1] / n
+                if peer is not None:
+                    row["pylinkage"] = times[2] / n
             else:
                 for method in ("linkcli", "hand"):
                     run = subprocess.run([sys.executable, os.path.abspath(__file__), "--child",
@@ -282,16 +356,22 @@ def main(argv=None):
                     row[method] = got["seconds"] / n
                     row[method + "_rss"] = got["rss_MB"]
             rows.append(row)
+            other = f"  pylinkage {row['pylinkage'] * 1e9:8.1f} ns/pos" if "pylinkage" in row \
+                else ""
             print(f"  N={n:<9d} linkcli {row['linkcli'] * 1e9:8.1f} ns/pos  hand "
-                  f"{row['hand'] * 1e9:8.1f} ns/pos  ratio {row['linkcli'] / row['hand']:.2f}",
-                  flush=True)
+                  f"{row['hand'] * 1e9:8.1f} ns/pos  ratio {row['linkcli'] / row['hand']:.2f}"
+                  f"{other}", flush=True)
     peers = []
     for name in PEERS:
         try:
-            importlib.import_module(name)
-            peers.append(f"{name}: importable, but no adapter in this benchmark")
+            module = importlib.import_module(name)
         except ImportError:
-            peers.append(f"{name}: not installed, skipped")
+            peers.append(f"{name}: not installed, skipped (pip install pylinkage numba)")
+            continue
+        agree = ", ".join(f"{k} {v:.1e}" for k, v in checks.items())
+        peers.append(f"{name} {getattr(module, '__version__', '?')}, numba path "
+                     "(step_fast_with_kinematics: joint coordinates and their rates, no angles), "
+                     f"its output joint against linkcli's, relative: {agree or 'not run'}")
     text = table(rows, peers)
     print("\n" + text)
     with open(os.path.join(OUT, "speed.md"), "w", encoding="utf-8") as handle:
@@ -310,19 +390,20 @@ def table(rows, peers) -> str:
              "(peak RSS of that process). Accuracy on 10^4 positions: closure residual "
              "(relative to size^2), rates against five-point finite differences (relative; the "
              "differences are good to ~1e-8), linkcli against hand-written.", "",
-             "| mechanism | N | linkcli | hand-written | ratio | peak RSS linkcli / hand "
-             "| closure | rates vs FD (hand) | linkcli - hand |",
-             "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+             "| mechanism | N | linkcli | hand-written | ratio | pylinkage (numba) "
+             "| peak RSS linkcli / hand | closure | rates vs FD (hand) | linkcli - hand |",
+             "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+
+    def shown(seconds, n):
+        return f"{seconds * n * 1e3:.3f} ms" if n == 360 else f"{seconds * 1e9:.0f} ns"
     for r in rows:
         n = r["N"]
-        if n == 360:
-            mine, hand = f"{r['linkcli'] * n * 1e3:.3f} ms", f"{r['hand'] * n * 1e3:.3f} ms"
-        else:
-            mine, hand = f"{r['linkcli'] * 1e9:.0f} ns", f"{r['hand'] * 1e9:.0f} ns"
+        mine, hand = shown(r["linkcli"], n), shown(r["hand"], n)
+        peer = shown(r["pylinkage"], n) if "pylinkage" in r else ""
         rss = f"{r['linkcli_rss']:.0f} / {r['hand_rss']:.0f} MB" if "linkcli_rss" in r else ""
         size = str(n) if n < 10 ** 4 else f"10^{round(math.log10(n))}"
         lines.append(f"| {r['mechanism']} | {size} | {mine} | {hand} | "
-                     f"{r['linkcli'] / r['hand']:.2f}x | {rss} | {r['closure']:.1e} | "
+                     f"{r['linkcli'] / r['hand']:.2f}x | {peer} | {rss} | {r['closure']:.1e} | "
                      f"{r['fd']:.1e} ({r['fd_hand']:.1e}) | {r['agree']:.1e} |")
     lines += ["", "Peers: " + "; ".join(peers) + "."]
     return "\n".join(lines)
@@ -341,6 +422,10 @@ def chart(rows) -> str:
         n, a, b = zip(*mine)
         ax.loglog(n, a, "-o", color=f"C{i}", label=f"{key}, linkcli")
         ax.loglog(n, b, "--s", color=f"C{i}", label=f"{key}, hand-written")
+        peer = [(r["N"], r["pylinkage"] * 1e9) for r in rows
+                if r["mechanism"] == key and "pylinkage" in r]
+        if peer:
+            ax.loglog(*zip(*peer), ":^", color=f"C{i}", label=f"{key}, pylinkage (numba)")
         ratio.semilogx(n, np.array(a) / np.array(b), "-o", color=f"C{i}", label=key)
     ax.set_xlabel("positions N")
     ax.set_ylabel("time per position [ns]")

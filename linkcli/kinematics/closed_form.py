@@ -24,7 +24,7 @@ import numpy as np
 from linkcli.kinematics import dyads
 from linkcli.kinematics.dyads import cross
 from linkcli.errors import AssemblyError, Caution, InputError, SingularError
-from linkcli.kinematics.topology import Dist, Line, analyse
+from linkcli.kinematics.topology import Coord, Dist, Line, analyse
 
 SINGULAR = 1e-9
 #: dyads with an assembly branch to choose
@@ -118,6 +118,7 @@ class Solver:
         self.fixed = dict(mech.fixed)
         self.n = len(mech.coordinates)
         self._frames = {}               # fixed guides: (B, C, value) -> (u, e), found once
+        self._norms = {i: _constant_norms(g, self.fixed) for i, g in enumerate(self.groups)}
         self._choose_branches()
 
     # branches ------------------------------------------------------------------
@@ -492,9 +493,11 @@ class Solver:
             x1, y1, x2, y2 = g1.real, g1.imag, g2.real, g2.imag
             det = x1 * y2
             det -= y1 * x2                  # cross(G_1, G_2), in real parts
-            norms = np.abs(g1) * np.abs(g2)      # hypot: no underflow of tiny guides
-            if not _least(norms) > 0:       # a zero or NaN: divide those by 1
-                norms = np.where(norms > 0, norms, 1.0)
+            norms = self._norms[index]
+            if norms is None:
+                norms = np.abs(g1) * np.abs(g2)      # hypot: no underflow of tiny guides
+                if not _least(norms) > 0:       # a zero or NaN: divide those by 1
+                    norms = np.where(norms > 0, norms, 1.0)
             measure = np.abs(det)
             measure /= norms
             if index in kin.flat:           # a toggle within rounding: singular, whatever
@@ -685,6 +688,27 @@ def _least(x):
     return x.min() if type(x) is np.ndarray else np.min(x)
 
 
+def _constant_norms(group, fixed):
+    """|G_1| |G_2| of a group whose constraint gradients keep their lengths (see
+    :func:`_grad`): 2 L for a distance of fixed length L (P on its circle), |C - B| for a
+    line through fixed points when P is the unknown, 1 for a coordinate; None when either
+    varies (a driven length, a moving guide) or the group has no rate system.  A zero
+    product is 1, as for the computed norms."""
+    if not (group.is_dyad or group.kind == "driver-coord") or len(group.constraints) != 2:
+        return None
+    out = 1.0
+    for c in group.constraints:
+        if isinstance(c, Dist) and c.length is not None:
+            out *= 2.0 * abs(c.length)
+        elif isinstance(c, Line) and c.p == group.point and c.b in fixed and c.c in fixed:
+            out *= abs(fixed[c.c] - fixed[c.b])
+        elif isinstance(c, Coord):
+            pass
+        else:
+            return None
+    return out if out > 0 else 1.0
+
+
 def _grad(c, pos, unknown):
     """Gradient of constraint ``c`` with respect to point ``unknown`` (complex)."""
     if isinstance(c, Dist):
@@ -740,15 +764,10 @@ def _rhs(c, grad, pos, d, q, qrate, vel, qd):
 def _combine(r1, k1, r2, k2):
     """r1 K1 + r2 K2 as a complex array, skipping terms whose r is a zero scalar; written
     straight into the complex result (a zero is +0, as 0 + r1 K1 + r2 K2 gives)."""
-    terms = [(r, k) for r, k in ((r1, k1), (r2, k2))
-             if (r.ndim if isinstance(r, np.ndarray) else 0) or r != 0]
+    terms = [(r, k) for r, k in ((r1, k1), (r2, k2)) if type(r) is np.ndarray or r != 0]
     if not terms:                       # a point moving with the frame: zero
         return dyads._complex(0.0, 0.0) if np.ndim(k2[0]) else 0j
-    (r, (kx, ky)), rest = terms[0], terms[1:]
-    shape = ()
-    for x in (x for t in terms for x in (t[0], t[1][0])):
-        if type(x) is np.ndarray and x.shape != shape:
-            shape = np.broadcast_shapes(shape, x.shape) if shape else x.shape
+    shape = _shape_of(terms)
     if not shape:
         re = im = 0.0
         for r, (kx, ky) in terms:
@@ -757,6 +776,7 @@ def _combine(r1, k1, r2, k2):
         return complex(re, im)
     out = np.empty(shape, complex)
     re, im = out.real, out.imag
+    (r, (kx, ky)), rest = terms[0], terms[1:]
     np.multiply(r, kx, out=re)
     np.multiply(r, ky, out=im)
     for r, (kx, ky) in rest:
@@ -765,6 +785,18 @@ def _combine(r1, k1, r2, k2):
     re += 0.0
     im += 0.0
     return out
+
+
+def _shape_of(terms) -> tuple:
+    """The broadcast shape of the (r, (kx, ky)) terms' r and kx: that of the first when every
+    one is an array of its shape (the common case, decided without broadcasting)."""
+    first = terms[0][0]
+    if type(first) is np.ndarray:
+        shape = first.shape
+        if all(type(x) is np.ndarray and x.shape == shape
+               for r, (kx, _) in terms for x in (r, kx)):
+            return shape
+    return np.broadcast_shapes(*(np.shape(x) for r, (kx, _) in terms for x in (r, kx)))
 
 
 def residuals(solver: Solver, kin: Kinematics) -> dict:

@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from linkcli.answers.memory import LONG, keep_freed_memory
 from linkcli.errors import InputError, LinkcliError, SolveError
 from linkcli.forces import motion
 from linkcli.kinematics.closed_form import own_coordinates, where_text
@@ -197,6 +198,8 @@ class Plan:
         solver = solver_for(mech, self.method, self.tol)
         order = self.order(mech)
         driver = self._driver_si(mech.driver, q, qdot, qddot)
+        if q is not None and np.size(q) >= LONG:
+            keep_freed_memory()
         if q is not None and np.size(q) > BLOCK and self._blockwise:
             result = self._in_blocks(mech, solver, order, *driver)
             if result is not None:

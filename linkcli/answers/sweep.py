@@ -37,6 +37,7 @@ from linkcli.errors import AtRestError, NoWorkError, AssemblyError, InputError, 
 from linkcli.kinematics.closed_form import SINGULAR, Kinematics
 from linkcli.kinematics.topology import Dist, Line
 from linkcli.model.mechanism import split_rate
+from linkcli.answers.memory import LONG, keep_freed_memory
 from linkcli.answers.quantities import needed_orders, plan_for, report_names, require_driver
 from linkcli.kinematics.solvers import solver_for
 
@@ -266,6 +267,8 @@ class Sweeper:
         end when no row at all could be assembled."""
         if self._done:
             raise RuntimeError("a Sweeper is solved once")
+        if min(self.size, self.block_size) >= LONG:
+            keep_freed_memory()
         try:
             for lo in range(0, self.size, self.block_size):
                 yield self._block(lo, min(self.size, lo + self.block_size))

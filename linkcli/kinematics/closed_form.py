@@ -118,8 +118,10 @@ class Solver:
         self.fixed = dict(mech.fixed)
         self.n = len(mech.coordinates)
         self._frames = {}               # fixed guides: (B, C, value) -> (u, e), found once
-        self._norms = {i: _constant_norms(g, self.fixed) for i, g in enumerate(self.groups)}
         self._choose_branches()
+        #: (point, rate step) of every group that solves a point, in the solving order
+        self._rates = [(g.point, self._rate_step(i, g)) for i, g in enumerate(self.groups)
+                       if g.point is not None]
 
     # branches ------------------------------------------------------------------
     def _choose_branches(self):
@@ -406,10 +408,9 @@ class Solver:
         kin.qd = kin.rates[0]
         kin.vel.clear()
         kin.vectors.clear()
-        for index, group in enumerate(self.groups):
-            if group.point is None:
-                continue
-            kin.vel[group.point] = self._rate(index, group, kin, kin.vel, kin.rates, None)
+        vel, rates = kin.vel, kin.rates
+        for point, step in self._rates:
+            vel[point] = step(kin, vel, rates, None)
         return kin
 
     def accelerations(self, kin: Kinematics, qdd, keep=False) -> Kinematics:
@@ -418,16 +419,25 @@ class Solver:
         kin.accels = self._coords(qdd, "qddot")
         kin.qdd = kin.accels[0]
         kin.acc.clear()
-        for index, group in enumerate(self.groups):
-            if group.point is None:
-                continue
-            kin.acc[group.point] = self._rate(index, group, kin, kin.acc, kin.accels, kin.vel)
+        acc, accels, vel = kin.acc, kin.accels, kin.vel
+        for point, step in self._rates:
+            acc[point] = step(kin, acc, accels, vel)
         if not keep:
             kin.linear.clear()          # rates done: free the cached systems
         return kin
 
-    def _rate(self, index, group, kin, d, qrate, vel):
-        """First (vel None) or second time derivative of the group's point.
+    def _rate_step(self, index, group):
+        """The function step(kin, d, qrate, vel) giving the first (``vel`` None) or second
+        time derivative of the group's point (see :meth:`_rate`), chosen once per group."""
+        if group.kind == "driver-angle":
+            return DriverRates(index, group, self.fixed)
+        if group.kind in ("place", "roll"):
+            return lambda kin, d, qrate, vel: self._rate(group, kin, d, vel)
+        return DyadRates(index, group, self.fixed)
+
+    def _rate(self, group, kin, d, vel):
+        """First (vel None) or second time derivative of the point of a placed point or a
+        rolling disc's marker.
 
         ``d`` holds the rates found so far; the group's own point is not in it
         yet, so every rate read from ``d`` is a known one.
@@ -436,34 +446,14 @@ class Solver:
         if group.kind == "place":
             k, m, n, w = group.place
             return _get(d, k) + (_get(d, m) - _get(d, n)) * w
-        if group.kind == "roll":
-            r = group.constraints[0]
-            _, _, terms = group.place
-            arm = pos[group.point] - pos[r.center]
-            omega = sum(c * term.rate(pos, kin.vel if vel is not None else d) for term, c, _ in terms)
-            if vel is None:
-                return _get(d, r.center) + 1j * omega * arm
-            alpha = sum(c * term.accel(pos, vel, d) for term, c, _ in terms)
-            return _get(d, r.center) + (1j * alpha - omega * omega) * arm
-        if group.kind == "driver-angle":  # P' = i q' (P - pivot), P'' = (i q'' - q'^2) (P - pivot)
-            pivot = group.constraints[0]
-            arm = kin.linear.get(index)     # P - pivot, kept for the second rates
-            if arm is None:
-                arm = kin.linear[index] = pos[group.point] - pos[pivot]
-            j = group.coord
-            rate = arm * (1j * qrate[j]) if vel is None else \
-                arm * (1j * qrate[j] - kin.rates[j] ** 2)
-            if pivot not in d:
-                return rate
-            if dyads.writable(rate, d[pivot]):
-                rate += d[pivot]
-                return rate
-            return d[pivot] + rate
-        k1, k2, g1, g2 = self._inverse(index, group, kin)
-        c1, c2 = group.constraints
-        r1 = _rhs(c1, g1, pos, d, kin.coords, qrate, vel, kin.rates)
-        r2 = _rhs(c2, g2, pos, d, kin.coords, qrate, vel, kin.rates)
-        return _combine(r1, k1, r2, k2)
+        r = group.constraints[0]
+        _, _, terms = group.place
+        arm = pos[group.point] - pos[r.center]
+        omega = sum(c * term.rate(pos, kin.vel if vel is not None else d) for term, c, _ in terms)
+        if vel is None:
+            return _get(d, r.center) + 1j * omega * arm
+        alpha = sum(c * term.accel(pos, vel, d) for term, c, _ in terms)
+        return _get(d, r.center) + (1j * alpha - omega * omega) * arm
 
     def rate_system(self, index, kin, order):
         """The 2x2 rate system of dyad ``index`` as solved at ``kin`` (rates of ``order``
@@ -479,37 +469,6 @@ class Solver:
         r1, r2 = (_rhs(c, g, pos, d, kin.coords, rates, vel, kin.rates)
                   for c, g in zip(group.constraints, (g1, g2)))
         return g1, g2, r1, r2, solved
-
-    def _inverse(self, index, group, kin):
-        """The group's 2x2 rate system Re(conj(G_i) V) = r_i, solved once per position.
-
-        V = r_1 K_1 + r_2 K_2 with K_1 = -i G_2 / det, K_2 = i G_1 / det and
-        det = cross(G_1, G_2); the K are kept as (real, imaginary) arrays.
-        """
-        lin = kin.linear.get(index)
-        if lin is None:
-            pos, p = kin.pos, group.point
-            g1, g2 = (_grad(c, pos, p) for c in group.constraints)
-            x1, y1, x2, y2 = g1.real, g1.imag, g2.real, g2.imag
-            det = x1 * y2
-            det -= y1 * x2                  # cross(G_1, G_2), in real parts
-            norms = self._norms[index]
-            if norms is None:
-                norms = np.abs(g1) * np.abs(g2)      # hypot: no underflow of tiny guides
-                if not _least(norms) > 0:       # a zero or NaN: divide those by 1
-                    norms = np.where(norms > 0, norms, 1.0)
-            measure = np.abs(det)
-            measure /= norms
-            if index in kin.flat:           # a toggle within rounding: singular, whatever
-                measure = np.where(kin.flat[index], 0.0, measure)   # the noise in det says
-            kin.measure[index] = measure
-            if not (det.all() if type(det) is np.ndarray else det):   # a zero: divide by 1
-                det = np.where(det == 0, 1.0, det)
-            inv = 1.0 / det
-            minus = -inv                    # -x inv = x (-inv), exactly
-            lin = ((y2 * inv, x2 * minus), (y1 * minus, x1 * inv), g1, g2)
-            kin.linear[index] = lin
-        return lin
 
     # failures ------------------------------------------------------------------
     def check(self, kin: Kinematics, velocities: bool):
@@ -532,6 +491,120 @@ class Solver:
                 raise singular_error(self.mech, self.groups[index], kin.q,
                                      np.broadcast_to(bad, kin.shape), measure,
                                      "sine of the angle between its constraint directions")
+
+
+# --- rates of the groups ----------------------------------------------------------------
+class DriverRates:
+    """P' = i q' (P - pivot) + pivot', P'' = (i q'' - q'^2) (P - pivot) + pivot'' of a
+    crank driven by coordinate ``j``; the arm P - pivot is kept for the second rates."""
+
+    def __init__(self, index, group, fixed):
+        self.index, self.point, self.j = index, group.point, group.coord
+        self.pivot = group.constraints[0]
+        self.moving = self.pivot not in fixed
+
+    def __call__(self, kin, d, qrate, vel):
+        arm = kin.linear.get(self.index)
+        if arm is None:
+            arm = kin.linear[self.index] = kin.pos[self.point] - kin.pos[self.pivot]
+        j = self.j
+        rate = arm * (1j * qrate[j]) if vel is None else arm * (1j * qrate[j] - kin.rates[j] ** 2)
+        if not self.moving or self.pivot not in d:
+            return rate
+        if dyads.writable(rate, d[self.pivot]):
+            rate += d[self.pivot]
+            return rate
+        return d[self.pivot] + rate
+
+
+class DyadRates:
+    """The 2x2 rate system Re(conj(G_i) P') = r_i of a dyad (or a coordinate driver),
+    see the module's docstring, with what its constraints' kinds and fixed points decide
+    worked out once: each right-hand side (:func:`_rhs_of`) and the gradients' constant
+    norms (:func:`_constant_norms`)."""
+
+    def __init__(self, index, group, fixed):
+        self.index, self.group = index, group
+        self.norms = _constant_norms(group, fixed)
+        self.rhs = tuple(_rhs_of(c, group.point, fixed) for c in group.constraints)
+
+    def __call__(self, kin, d, qrate, vel):
+        k1, k2, g1, g2 = self.inverse(kin)
+        f1, f2 = self.rhs
+        return _combine(f1(g1, kin, d, qrate, vel), k1, f2(g2, kin, d, qrate, vel), k2)
+
+    def inverse(self, kin):
+        """The system solved once per position: V = r_1 K_1 + r_2 K_2 with
+        K_1 = -i G_2 / det, K_2 = i G_1 / det and det = cross(G_1, G_2); the K are kept as
+        (real, imaginary) arrays, with G_1, G_2; the conditioning goes to ``kin.measure``."""
+        index = self.index
+        lin = kin.linear.get(index)
+        if lin is not None:
+            return lin
+        pos, p = kin.pos, self.group.point
+        g1, g2 = (_grad(c, pos, p) for c in self.group.constraints)
+        x1, y1, x2, y2 = g1.real, g1.imag, g2.real, g2.imag
+        det = x1 * y2
+        det -= y1 * x2                  # cross(G_1, G_2), in real parts
+        norms = self.norms
+        if norms is None:
+            norms = np.abs(g1) * np.abs(g2)      # hypot: no underflow of tiny guides
+            if not _least(norms) > 0:       # a zero or NaN: divide those by 1
+                norms = np.where(norms > 0, norms, 1.0)
+        measure = np.abs(det)
+        measure /= norms
+        if index in kin.flat:           # a toggle within rounding: singular, whatever
+            measure = np.where(kin.flat[index], 0.0, measure)   # the noise in det says
+        kin.measure[index] = measure
+        if not (det.all() if type(det) is np.ndarray else det):   # a zero: divide by 1
+            det = np.where(det == 0, 1.0, det)
+        inv = 1.0 / det
+        minus = -inv                    # -x inv = x (-inv), exactly
+        lin = kin.linear[index] = ((y2 * inv, x2 * minus), (y1 * minus, x1 * inv), g1, g2)
+        return lin
+
+
+def _rhs_of(c, unknown, fixed):
+    """rhs(G, kin, d, qrate, vel): :func:`_rhs` of constraint ``c`` with its kind decided
+    once; a line through fixed points, on which the unknown point runs, gives 0."""
+    if isinstance(c, Dist):
+        return _dist_rhs(c, fixed)
+    if isinstance(c, Line) and c.p == unknown and c.b in fixed and c.c in fixed:
+        return _no_rhs
+    if isinstance(c, Coord):
+        j = c.coord
+        return lambda g, kin, d, qrate, vel: qrate[j]
+
+    def rhs(g, kin, d, qrate, vel):
+        return _rhs(c, g, kin.pos, d, kin.coords, qrate, vel, kin.rates)
+    return rhs
+
+
+def _no_rhs(g, kin, d, qrate, vel):
+    return 0.0
+
+
+def _dist_rhs(c, fixed):
+    """:func:`_rhs` of |P - A| = L, the terms of a fixed A or a fixed L left out."""
+    a, p, j = c.a, c.p, c.coord
+    moving, driven = a not in fixed, c.length is None
+
+    def rhs(g, kin, d, qrate, vel):
+        r = 0.0
+        if moving:
+            va = d.get(a)
+            if va is not None:
+                r = (g.conjugate() * va).real
+        if driven:
+            r = r + 2.0 * kin.coords[j] * qrate[j]
+        if vel is not None:
+            dv = _delta(vel, p, a)
+            if dv is not None:
+                r = r - 2.0 * (dv.real * dv.real + dv.imag * dv.imag)
+            if driven:
+                r = r + 2.0 * kin.rates[j] * kin.rates[j]
+        return r
+    return rhs
 
 
 # --- rolling contacts -------------------------------------------------------------------

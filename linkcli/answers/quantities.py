@@ -178,6 +178,11 @@ class Plan:
         self.q_factors = [mech.units.display(driver, i)[1] for i in range(3)]
         self.steps = [_step(mech, name) for name in self.names]
         self.generic = any(fn is None for fn, _ in self.steps)
+        #: every name's display unit, in order (those of _value's names come with their values)
+        self.units = {name: unit for name, (_, unit) in zip(self.names, self.steps)}
+        #: (row, name) of the names evaluated by _value (their units come with the values)
+        self.others = [(i, name) for i, (name, (fn, _)) in enumerate(zip(self.names, self.steps))
+                       if fn is None]
         angles = {i: fn for i, (fn, _) in enumerate(self.steps) if isinstance(fn, AngleRow)}
         #: kernel(kin, table) writing rows of the table: the angles together, then each other
         self.kernels = ([Angles(angles)] if angles else []) + \
@@ -248,7 +253,7 @@ class Plan:
         except LinkcliError:
             return None
         result = Result(mech, kinematics=Later(solver, qs, qd, qdd, order))
-        result.units = {name: unit for name, (_, unit) in zip(self.names, self.steps)}
+        result.units = dict(self.units)
         result.values = dict(zip(self.names, table))
         return result
 
@@ -263,11 +268,9 @@ class Plan:
         table = np.empty((len(self.names),) + shape)
         for kernel in self.kernels:
             kernel(kin, table)
-        for i, (name, (fn, unit)) in enumerate(zip(self.names, self.steps)):
-            if fn is None:
-                value, unit = _value(mech, name, kin, loads, context)
-                table[i, ...] = value
-            result.units[name] = unit
+        result.units = dict(self.units)
+        for i, name in self.others:
+            table[i, ...], result.units[name] = _value(mech, name, kin, loads, context)
         if not np.isfinite(table).all():
             _require_finite(mech, dict(zip(self.names, table)))
         result.values = dict(zip(self.names, table))

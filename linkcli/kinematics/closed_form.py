@@ -535,8 +535,8 @@ class DyadRates:
 
     def inverse(self, kin):
         """The system solved once per position: V = r_1 K_1 + r_2 K_2 with
-        K_1 = -i G_2 / det, K_2 = i G_1 / det and det = cross(G_1, G_2); the K are kept as
-        (real, imaginary) arrays, with G_1, G_2; the conditioning goes to ``kin.measure``."""
+        K_1 = -i G_2 / det, K_2 = i G_1 / det and det = cross(G_1, G_2); (K_1, K_2, G_1, G_2)
+        are kept on ``kin.linear``, the conditioning on ``kin.measure``."""
         index = self.index
         lin = kin.linear.get(index)
         if lin is not None:
@@ -560,7 +560,12 @@ class DyadRates:
             det = np.where(det == 0, 1.0, det)
         inv = 1.0 / det
         minus = -inv                    # -x inv = x (-inv), exactly
-        lin = kin.linear[index] = ((y2 * inv, x2 * minus), (y1 * minus, x1 * inv), g1, g2)
+        k1, k2 = np.empty(np.shape(det), complex), np.empty(np.shape(det), complex)
+        np.multiply(y2, inv, out=k1.real)
+        np.multiply(x2, minus, out=k1.imag)
+        np.multiply(y1, minus, out=k2.real)
+        np.multiply(x1, inv, out=k2.imag)
+        lin = kin.linear[index] = (k1, k2, g1, g2)
         return lin
 
 
@@ -835,41 +840,19 @@ def _rhs(c, grad, pos, d, q, qrate, vel, qd):
 
 
 def _combine(r1, k1, r2, k2):
-    """r1 K1 + r2 K2 as a complex array, skipping terms whose r is a zero scalar; written
-    straight into the complex result (a zero is +0, as 0 + r1 K1 + r2 K2 gives)."""
-    terms = [(r, k) for r, k in ((r1, k1), (r2, k2)) if type(r) is np.ndarray or r != 0]
-    if not terms:                       # a point moving with the frame: zero
-        return dyads._complex(0.0, 0.0) if np.ndim(k2[0]) else 0j
-    shape = _shape_of(terms)
-    if not shape:
-        re = im = 0.0
-        for r, (kx, ky) in terms:
-            re = re + r * kx
-            im = im + r * ky
-        return complex(re, im)
-    out = np.empty(shape, complex)
-    re, im = out.real, out.imag
-    (r, (kx, ky)), rest = terms[0], terms[1:]
-    np.multiply(r, kx, out=re)
-    np.multiply(r, ky, out=im)
-    for r, (kx, ky) in rest:
-        re += r * kx
-        im += r * ky
-    re += 0.0
-    im += 0.0
-    return out
-
-
-def _shape_of(terms) -> tuple:
-    """The broadcast shape of the (r, (kx, ky)) terms' r and kx: that of the first when every
-    one is an array of its shape (the common case, decided without broadcasting)."""
-    first = terms[0][0]
-    if type(first) is np.ndarray:
-        shape = first.shape
-        if all(type(x) is np.ndarray and x.shape == shape
-               for r, (kx, _) in terms for x in (r, kx)):
-            return shape
-    return np.broadcast_shapes(*(np.shape(x) for r, (kx, _) in terms for x in (r, kx)))
+    """r1 K1 + r2 K2 (complex K), skipping terms whose r is a zero scalar; a zero is +0,
+    as 0 + r1 K1 + r2 K2 gives."""
+    zero1 = type(r1) is not np.ndarray and r1 == 0
+    if type(r2) is not np.ndarray and r2 == 0:
+        if zero1:                       # a point moving with the frame: zero
+            return np.zeros(np.shape(k2), complex) if np.ndim(k2) else 0j
+        out = r1 * k1
+    else:
+        out = r2 * k2 if zero1 else r1 * k1 + r2 * k2
+    if type(out) is np.ndarray:
+        out += 0.0
+        return out
+    return complex(out) + 0.0
 
 
 def residuals(solver: Solver, kin: Kinematics) -> dict:

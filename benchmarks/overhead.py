@@ -1,0 +1,173 @@
+"""Where the time of one call at 360 positions goes (run by `make bench`).
+
+At 360 positions a call is a few hundred NumPy operations on short arrays, each costing
+about a microsecond whatever it computes, plus the Python that strings them.  For the
+seed-004 four-bar (angles of the coupler and rocker and their two rates) this times:
+
+- linkcli's call ``Linkage.solve(q, names=...)`` and its phases (positions, velocities,
+  accelerations with their checks, the report's values);
+- ``straight``: linkcli's algorithm written as one straight-line NumPy function for this
+  mechanism: the same circle intersection, the same 2x2 rate systems on the points, the
+  same refusals (assembly, toggle within rounding, singular rate system, finiteness), the
+  same angles in [0, 2 pi) and rates from w = z'/z; no Python structure at all;
+- ``hand``: the hand-written closed form of ``speed.py`` (no checks, angles in (-pi, pi]).
+
+``straight`` against ``hand`` is what the checks and the general formulation cost;
+linkcli against ``straight`` is what the structure (groups, dictionaries, plans) costs.
+
+    python benchmarks/overhead.py [--rounds R]
+
+Writes benchmarks/out/overhead.md (also printed).
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.dirname(HERE))
+sys.path.insert(0, HERE)
+
+from speed import OUT, case, machine  # noqa: E402
+
+TWO_PI = 2 * math.pi
+EPS = np.finfo(float).eps
+
+
+class Refused(Exception):
+    """A position the straight-line version refuses, as linkcli would."""
+
+
+def straight_fourbar(q, qd, qdd, r=0.1, b=0.315, c=0.5,
+                     b0=0.425 * complex(math.cos(7 / 4 * math.pi), math.sin(7 / 4 * math.pi))):
+    """The four-bar by linkcli's algorithm, straight-line: crank A = r e^{iq}; B on the
+    circles |B - A| = b, |B - B0| = c (B = A + (B0 - A)(t + i s)); the point rates from
+    Re(conj(G_i) B') = r_i with G_1 = B - A, G_2 = B - B0; angles and rates of B - A and
+    B - B0 from w = z'/z, stacked."""
+    a = np.empty(q.shape, complex)
+    np.cos(q, out=a.real)
+    np.sin(q, out=a.imag)
+    a *= r
+    d = b0 - a
+    d2 = d.real * d.real + d.imag * d.imag
+    t = (b * b - c * c + d2) / (2.0 * d2)
+    e = b * b / d2 - t * t
+    lowest = e.min()
+    if not lowest > 2048 * EPS * b * b / d2.min() * (1.0 + (np.abs(a).max() + abs(b0))
+                                                     / math.sqrt(d2.min())):
+        raise Refused("cannot assemble or toggle")
+    z = np.empty(q.shape, complex)
+    z.real = t
+    np.sqrt(e, out=z.imag)
+    p = a + d * z
+    u1, u2 = p - a, p - b0
+    det = u1.real * u2.imag - u1.imag * u2.real
+    measure = np.abs(det) / (b * c)
+    if measure.min() < 1e-9:
+        raise Refused("singular")
+    inv = 1.0 / det
+    k1 = np.empty(q.shape, complex)
+    np.multiply(u2.imag, inv, out=k1.real)
+    np.multiply(u2.real, -inv, out=k1.imag)
+    k2 = np.empty(q.shape, complex)
+    np.multiply(u1.imag, -inv, out=k2.real)
+    np.multiply(u1.real, inv, out=k2.imag)
+    va = a * (1j * qd)
+    vp = (u1.conjugate() * va).real * k1
+    vp += 0.0
+    aa = a * (1j * qdd - qd * qd)
+    dv = vp - va
+    ap = ((u1.conjugate() * aa).real - (dv.real * dv.real + dv.imag * dv.imag)) * k1 \
+        - (vp.real * vp.real + vp.imag * vp.imag) * k2
+    ap += 0.0
+    zs = np.empty((3, 2) + q.shape, complex)
+    np.subtract(p, a, out=zs[0, 0])
+    np.subtract(p, b0, out=zs[0, 1])
+    np.subtract(vp, va, out=zs[1, 0])
+    zs[1, 1] = vp
+    np.subtract(ap, aa, out=zs[2, 0])
+    zs[2, 1] = ap
+    table = np.empty((3, 2) + q.shape)
+    angle = table[0]
+    np.arctan2(zs[0].imag, zs[0].real, out=angle)
+    np.add(angle, TWO_PI, out=angle, where=angle <= 0)
+    np.copyto(angle, 0.0, where=angle > TWO_PI - 1e-12)
+    w = zs[1:] / zs[0]
+    np.add(w[0].imag, 0.0, out=table[1])
+    np.multiply(w[0].real, w[0].imag, out=table[2])
+    table[2] *= -2.0
+    table[2] += w[1].imag
+    if not np.isfinite(table).all():
+        raise Refused("not finite")
+    return dict(zip(("beta", "gamma", "betadot", "gammadot", "betaddot", "gammaddot"),
+                    table.reshape(6, -1)))
+
+
+def phases(c, q):
+    """Seconds of each phase of one evaluation (fresh kinematics, as a call makes)."""
+    from linkcli.answers.quantities import plan_for
+    from linkcli.kinematics.solvers import solver_for
+    solver, plan = solver_for(c.mech), plan_for(c.mech, c.names)
+    clock = time.perf_counter
+    t0 = clock()
+    kin = solver.positions(q)
+    solver.check(kin, velocities=False)
+    t1 = clock()
+    solver.velocities(kin, c.qd)
+    solver.check(kin, velocities=True)
+    t2 = clock()
+    solver.accelerations(kin, c.qdd)
+    t3 = clock()
+    plan.collect(c.mech, solver, kin)
+    t4 = clock()
+    return np.diff([t0, t1, t2, t3, t4])
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--rounds", type=int, default=15, help="rounds of 200 calls each")
+    args = parser.parse_args(argv)
+    c = case("four-bar")
+    q = c.grid(360)
+    mine, straight = c.solve(q), straight_fourbar(q, c.qd, c.qdd)
+    agree = max(float(np.max(np.abs(mine[n] - straight[n]))) for n in mine)
+    funcs = {"linkcli": lambda: c.solve(q), "straight": lambda: straight_fourbar(q, c.qd, c.qdd),
+             "hand": lambda: c.by_hand(q)}
+    best = dict.fromkeys(funcs, math.inf)
+    parts = np.full(4, math.inf)
+    for _ in range(args.rounds):
+        for name, func in funcs.items():
+            start = time.perf_counter()
+            for _ in range(200):
+                func()
+            best[name] = min(best[name], (time.perf_counter() - start) / 200)
+        parts = np.minimum(parts, np.min([phases(c, q) for _ in range(200)], axis=0))
+    us = {k: v * 1e6 for k, v in best.items()}
+    lines = ["# One call at 360 positions: the four-bar", "",
+             f"{time.strftime('%Y-%m-%d')}, {machine()}. Best of {args.rounds} rounds of 200 "
+             "calls (phases: the best of each).", "",
+             "| version | us per call | against hand-written |", "| --- | ---: | ---: |"]
+    for name, label in (("linkcli", "linkcli `Linkage.solve`"),
+                        ("straight", "linkcli's algorithm and checks, straight-line NumPy"),
+                        ("hand", "hand-written closed form, no checks")):
+        lines.append(f"| {label} | {us[name]:.1f} | {us[name] / us['hand']:.2f}x |")
+    lines += ["", "linkcli's phases: " + ", ".join(
+        f"{n} {v * 1e6:.1f} us" for n, v in zip(
+            ("positions (with the assembly check)", "velocities (with the singularity check)",
+             "accelerations", "report values"), parts)) + ".",
+        f"Straight-line values against linkcli's: {agree:.1e} at most."]
+    text = "\n".join(lines)
+    print(text)
+    os.makedirs(OUT, exist_ok=True)
+    with open(os.path.join(OUT, "overhead.md"), "w", encoding="utf-8") as handle:
+        handle.write(text + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -8,8 +8,8 @@ at N = 360, 10^4, 10^6 and 10^7 driver positions:
 - linkcli: ``Linkage.solve(q, names=...)`` on the whole array (10^7: in blocks of
   16384 positions, the block size of ``linkcli sweep``, in a fresh process whose peak
   resident memory is read);
-- hand-written NumPy of the same closed form (the same blocks at 10^7), the speed to
-  compare with;
+- hand-written NumPy of the same closed form (the same blocks at 10^7, with the same
+  malloc settings, ``linkcli.answers.memory``), the speed to compare with;
 - peers when importable: pylinkage's numba path (``Linkage.step_fast_with_kinematics``,
   joint coordinates and their two rates, no angles) for the four-bar and the
   crank-slider (it has no link of driven length for the six-bar), up to 10^6; its
@@ -246,8 +246,10 @@ def high_water() -> float:
 
 def child(key, method, n):
     """Run in a fresh process: one blocked solve of ``n`` positions, its time and peak RSS."""
+    from linkcli.answers.memory import keep_freed_memory
     c = case(key)
-    func = c.solve if method == "linkcli" else c.by_hand
+    keep_freed_memory()                     # both with the malloc settings linkcli's solves
+    func = c.solve if method == "linkcli" else c.by_hand    # of blocks take
     func(c.grid(BLOCK))                     # warm: plans and solvers built
     before = high_water()
     seconds = in_blocks(func, c, n)

@@ -316,6 +316,12 @@ class Solver:
         if kind == "driver-angle":        # P = pivot + L e^{i q}, written into one array
             pivot, length, reverse = group.constraints
             p = dyads.cis(q[group.coord])
+            base = pos[pivot]
+            if type(base) is complex and p.ndim:    # a fixed pivot (none to add at 0)
+                p *= -length if reverse else length
+                if base:
+                    p += base
+                return p, None
             if not dyads.writable(p, pos[pivot]):
                 return pos[pivot] + (-length if reverse else length) * p, None
             p *= -length if reverse else length

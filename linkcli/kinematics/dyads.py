@@ -86,12 +86,20 @@ def circle_circle(a, r1, b, r2, branch, flat=False):
     if not negative:                    # e >= 0: the noise is below this bound everywhere
         least = float(least)
         top = _top(r1)
-        if _clear(lowest, TOGGLE * top * top / least * (1.0 + (_top(a) + _top(b)) /
+        if _clear(lowest, TOGGLE * top * top / least * (1.0 + _reach(a, b, d2) /
                                                     math.sqrt(least))):
             return p, short, False
     reach = (np.abs(a) + np.abs(b)) / np.sqrt(d2)          # coordinates against the span
     noise = TOGGLE * np.maximum(across2, along2) * (1.0 + reach)
     return p, short, np.abs(e) <= noise
+
+
+def _reach(a, b, d2) -> float:
+    """A bound of max|A| + max|B|: where one centre is fixed, from it and the largest span
+    (|B| <= |A| + |B - A|), which spares the magnitudes of the moving one."""
+    if type(a) is np.ndarray and type(b) is np.ndarray:
+        return _top(a) + _top(b)
+    return 2.0 * (_top(b) if type(a) is np.ndarray else _top(a)) + math.sqrt(float(d2.max()))
 
 
 def _circle_circle_safe(a, r1, b, r2, branch):

@@ -2,11 +2,12 @@
 
 At 360 positions a call is a few hundred NumPy operations on short arrays, each costing
 about a microsecond whatever it computes, plus the Python that strings them.  For the
-seed-004 four-bar (angles of the coupler and rocker and their two rates) this times:
+seed-004 four-bar (angles of the coupler and rocker and their two rates) and the seed-000
+crank-slider (the rod's angle, the slider's x and their rates) this times:
 
 - linkcli's call ``Linkage.solve(q, names=...)`` and its phases (positions, velocities,
   accelerations with their checks, the report's values);
-- ``straight``: linkcli's algorithm written as one straight-line NumPy function for this
+- ``straight``: linkcli's algorithm written as one straight-line NumPy function for each
   mechanism: the same circle intersection, the same 2x2 rate systems on the points, the
   same refusals (assembly, toggle within rounding, singular rate system, finiteness), the
   same angles in [0, 2 pi) and rates from w = z'/z; no Python structure at all;
@@ -108,6 +109,56 @@ def straight_fourbar(q, qd, qdd, r=0.1, b=0.315, c=0.5,
                     table.reshape(6, -1)))
 
 
+def straight_crank_slider(q, qd, qdd, a=1.0, b=math.sqrt(2.0)):
+    """The centred crank-slider by linkcli's algorithm, straight-line: crank A = a e^{iq};
+    B on |B - A| = b and the line y = 0 (B = along + 0i, along = Re A + sqrt(b^2 - Im A^2));
+    the rates of B from Re(conj(G_i) B') = r_i with G_1 = B - A, G_2 = i (the guide's
+    normal); the angle of B - A from w = z'/z; x of B and its rates."""
+    p = np.empty(q.shape, complex)
+    np.cos(q, out=p.real)
+    np.sin(q, out=p.imag)
+    p *= a
+    dist = p.imag
+    disc = b * b - dist * dist
+    lowest = disc.min()
+    if not lowest > 2048 * EPS * (b * b + b * (np.abs(p).max() + b)):
+        raise Refused("cannot assemble or toggle")
+    pb = np.empty(q.shape, complex)
+    np.add(p.real, np.sqrt(disc), out=pb.real)
+    pb.imag = 0.0
+    u1 = pb - p
+    det = u1.real                       # cross(G_1, i) = Re G_1
+    if (np.abs(det) / b).min() < 1e-9:
+        raise Refused("singular")
+    inv = 1.0 / det
+    k1 = np.empty(q.shape, complex)     # K_1 = -i G_2 / det = 1 / det
+    k1.real = inv
+    k1.imag = 0.0
+    va = p * (1j * qd)
+    vb = (u1.conjugate() * va).real * k1
+    vb += 0.0
+    aa = p * (1j * qdd - qd * qd)
+    dv = vb - va
+    ab = ((u1.conjugate() * aa).real - (dv.real * dv.real + dv.imag * dv.imag)) * k1
+    ab += 0.0
+    table = np.empty((6,) + q.shape)
+    angle = table[0]
+    np.arctan2(u1.imag, u1.real, out=angle)
+    np.add(angle, TWO_PI, out=angle, where=angle <= 0)
+    np.copyto(angle, 0.0, where=angle > TWO_PI - 1e-12)
+    w = dv / u1
+    np.add(w.imag, 0.0, out=table[2])
+    np.multiply(w.real, w.imag, out=table[4])
+    table[4] *= -2.0
+    table[4] += ((ab - aa) / u1).imag
+    np.add(pb.real, 0.0, out=table[1])
+    np.add(vb.real, 0.0, out=table[3])
+    np.add(ab.real, 0.0, out=table[5])
+    if not np.isfinite(table).all():
+        raise Refused("not finite")
+    return dict(zip(("beta", "xB", "betadot", "xBdot", "betaddot", "xBddot"), table))
+
+
 def phases(c, q):
     """Seconds of each phase of one evaluation (fresh kinematics, as a call makes)."""
     from linkcli.answers.quantities import plan_for
@@ -128,41 +179,54 @@ def phases(c, q):
     return np.diff([t0, t1, t2, t3, t4])
 
 
-def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--rounds", type=int, default=15, help="rounds of 200 calls each")
-    args = parser.parse_args(argv)
-    c = case("four-bar")
+STRAIGHT = {"four-bar": straight_fourbar, "crank-slider": straight_crank_slider}
+
+
+def measure(key, rounds):
+    """(us per call of linkcli, straight, hand; linkcli's phases in us; straight - linkcli)."""
+    c = case(key)
     q = c.grid(360)
-    mine, straight = c.solve(q), straight_fourbar(q, c.qd, c.qdd)
-    agree = max(float(np.max(np.abs(mine[n] - straight[n]))) for n in mine)
-    funcs = {"linkcli": lambda: c.solve(q), "straight": lambda: straight_fourbar(q, c.qd, c.qdd),
+    straight = STRAIGHT[key]
+    mine, same = c.solve(q), straight(q, c.qd, c.qdd)
+    agree = max(float(np.max(np.abs(mine[n] - same[n]))) for n in mine)
+    funcs = {"linkcli": lambda: c.solve(q), "straight": lambda: straight(q, c.qd, c.qdd),
              "hand": lambda: c.by_hand(q)}
     best = dict.fromkeys(funcs, math.inf)
     parts = np.full(4, math.inf)
-    for _ in range(args.rounds):
+    for _ in range(rounds):
         for name, func in funcs.items():
             start = time.perf_counter()
             for _ in range(200):
                 func()
             best[name] = min(best[name], (time.perf_counter() - start) / 200)
         parts = np.minimum(parts, np.min([phases(c, q) for _ in range(200)], axis=0))
-    us = {k: v * 1e6 for k, v in best.items()}
-    lines = ["# One call at 360 positions: the four-bar", "",
+    return {k: v * 1e6 for k, v in best.items()}, parts * 1e6, agree
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--rounds", type=int, default=15, help="rounds of 200 calls each")
+    args = parser.parse_args(argv)
+    lines = ["# One call at 360 positions", "",
              f"{time.strftime('%Y-%m-%d')}, {machine()}. Best of {args.rounds} rounds of 200 "
              "calls (phases: the best of each).", "",
-             "| version | us per call | against hand-written |", "| --- | ---: | ---: |"]
-    for name, label in (("linkcli", "linkcli `Linkage.solve`"),
-                        ("straight", "linkcli's algorithm and checks, straight-line NumPy"),
-                        ("hand", "hand-written closed form, no checks")):
-        lines.append(f"| {label} | {us[name]:.1f} | {us[name] / us['hand']:.2f}x |")
-    lines += ["", "linkcli's phases: " + ", ".join(
-        f"{n} {v * 1e6:.1f} us" for n, v in zip(
-            ("positions (with the assembly check)", "velocities (with the singularity check)",
-             "accelerations", "report values"), parts)) + ".",
-        f"Straight-line values against linkcli's: {agree:.1e} at most."]
+             "| mechanism | linkcli | linkcli's algorithm and checks, straight-line | "
+             "hand-written, no checks | linkcli's phases: positions, velocities, "
+             "accelerations, report values | straight - linkcli |",
+             "| --- | ---: | ---: | ---: | --- | ---: |"]
+    for key in STRAIGHT:
+        us, parts, agree = measure(key, args.rounds)
+        hand = us["hand"]
+        lines.append(f"| {key} | {us['linkcli']:.1f} us ({us['linkcli'] / hand:.2f}x) | "
+                     f"{us['straight']:.1f} us ({us['straight'] / hand:.2f}x) | {hand:.1f} us | "
+                     + ", ".join(f"{v:.1f}" for v in parts) + f" us | {agree:.1e} |")
+        print(lines[-1], flush=True)
+    lines += ["", "Straight-line: the same operations as linkcli for this mechanism, in one "
+              "function (the values agree bit for bit); what it costs over the hand-written "
+              "code is the general formulation and the checks, what linkcli costs over it is "
+              "the structure (groups, dictionaries, the plan)."]
     text = "\n".join(lines)
-    print(text)
+    print("\n" + text)
     os.makedirs(OUT, exist_ok=True)
     with open(os.path.join(OUT, "overhead.md"), "w", encoding="utf-8") as handle:
         handle.write(text + "\n")

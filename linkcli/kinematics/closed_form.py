@@ -512,15 +512,27 @@ class DriverRates:
     def __call__(self, kin, d, qrate, vel):
         arm = kin.linear.get(self.index)
         if arm is None:
-            arm = kin.linear[self.index] = kin.pos[self.point] - kin.pos[self.pivot]
+            centre = kin.pos[self.pivot]
+            point = kin.pos[self.point]     # about a fixed pivot at the origin: P itself
+            arm = kin.linear[self.index] = point if type(centre) is complex and not centre \
+                and type(point) is np.ndarray else point - centre
         j = self.j
-        rate = arm * (1j * qrate[j]) if vel is None else arm * (1j * qrate[j] - kin.rates[j] ** 2)
+        if vel is None:
+            rate = arm * (1j * _number(qrate[j]))
+        else:               # w * w: a float's ** raises where it overflows, * gives inf
+            w = _number(kin.rates[j])
+            rate = arm * (1j * _number(qrate[j]) - w * w)
         if not self.moving or self.pivot not in d:
             return rate
         if dyads.writable(rate, d[self.pivot]):
             rate += d[self.pivot]
             return rate
         return d[self.pivot] + rate
+
+
+def _number(x):
+    """A 0-d array as a Python float (its arithmetic with numbers costs no array call)."""
+    return float(x) if type(x) is np.ndarray and not x.ndim else x
 
 
 class DyadRates:
@@ -533,6 +545,7 @@ class DyadRates:
         self.index, self.group = index, group
         self.norms = _constant_norms(group, fixed)
         self.rhs = tuple(_rhs_of(c, group.point, fixed) for c in group.constraints)
+        self.grads = tuple(_grad_of(c, group.point, fixed) for c in group.constraints)
 
     def __call__(self, kin, d, qrate, vel):
         k1, k2, g1, g2 = self.inverse(kin)
@@ -547,8 +560,8 @@ class DyadRates:
         lin = kin.linear.get(index)
         if lin is not None:
             return lin
-        pos, p = kin.pos, self.group.point
-        g1, g2 = (_grad(c, pos, p) for c in self.group.constraints)
+        pos = kin.pos
+        g1, g2 = (g(pos) if callable(g) else g for g in self.grads)
         x1, y1, x2, y2 = g1.real, g1.imag, g2.real, g2.imag
         det = x1 * y2
         det -= y1 * x2                  # cross(G_1, G_2), in real parts
@@ -559,14 +572,18 @@ class DyadRates:
                 norms = np.where(norms > 0, norms, 1.0)
         measure = np.abs(det)
         measure /= norms
+        if type(det) is np.ndarray:
+            if not measure.min() != 0:      # a zero det (NaN is not): divide those by 1
+                det = np.where(det == 0, 1.0, det)
+        elif det == 0:
+            det = 1.0
         if index in kin.flat:           # a toggle within rounding: singular, whatever
             measure = np.where(kin.flat[index], 0.0, measure)   # the noise in det says
         kin.measure[index] = measure
-        if not (det.all() if type(det) is np.ndarray else det):   # a zero: divide by 1
-            det = np.where(det == 0, 1.0, det)
         inv = 1.0 / det
         minus = -inv                    # -x inv = x (-inv), exactly
-        k1, k2 = np.empty(np.shape(det), complex), np.empty(np.shape(det), complex)
+        shape = np.shape(det)
+        k1, k2 = np.empty(shape, complex), np.empty(shape, complex)
         np.multiply(y2, inv, out=k1.real)
         np.multiply(x2, minus, out=k1.imag)
         np.multiply(y1, minus, out=k2.real)
@@ -791,6 +808,20 @@ def _constant_norms(group, fixed):
         else:
             return None
     return out if out > 0 else 1.0
+
+
+def _grad_of(c, unknown, fixed):
+    """:func:`_grad` of ``c`` decided once: the gradient itself where it is constant (a
+    coordinate, a line through fixed points on which the unknown runs), else
+    grad(pos)."""
+    if isinstance(c, Dist):
+        p, a = c.p, c.a
+        return lambda pos: 2.0 * (pos[p] - pos[a])
+    if isinstance(c, Line) and c.p == unknown and c.b in fixed and c.c in fixed:
+        return _grad(c, fixed, unknown)
+    if isinstance(c, Line):
+        return lambda pos: _grad(c, pos, unknown)
+    return _grad(c, {}, unknown)
 
 
 def _grad(c, pos, unknown):

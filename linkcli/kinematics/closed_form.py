@@ -466,14 +466,13 @@ class Solver:
         1 or 2 already on ``kin``): (G_1, G_2, r_1, r_2, P') with Re(conj(G_i) P') = r_i,
         for the worked solution."""
         group = self.groups[index]
-        pos, p = kin.pos, group.point
-        g1, g2 = (_grad(c, pos, p) for c in group.constraints)
+        system = DyadRates(index, group, self.fixed)
+        g1, g2 = (g(kin.pos) if callable(g) else g for g in system.grads)
         d = dict(kin.vel if order == 1 else kin.acc)
-        solved = d.pop(p)
+        solved = d.pop(group.point)
         rates = kin.rates if order == 1 else kin.accels
         vel = None if order == 1 else kin.vel
-        r1, r2 = (_rhs(c, g, pos, d, kin.coords, rates, vel, kin.rates)
-                  for c, g in zip(group.constraints, (g1, g2)))
+        r1, r2 = (rhs(g, kin, d, rates, vel) for rhs, g in zip(system.rhs, (g1, g2)))
         return g1, g2, r1, r2, solved
 
     # failures ------------------------------------------------------------------
@@ -613,7 +612,10 @@ def _no_rhs(g, kin, d, qrate, vel):
 
 
 def _dist_rhs(c, fixed):
-    """:func:`_rhs` of |P - A| = L, the terms of a fixed A or a fixed L left out."""
+    """The right-hand side (see :func:`_rhs`) of g = |P - A|^2 - L^2 with G = 2 (P - A),
+    P unknown: r = Re(conj(G) A') + 2 L L' for velocities, and for accelerations
+    r = Re(conj(G) A'') + 2 L L'' - 2 |P' - A'|^2 + 2 L'^2; the terms of a fixed A or a
+    fixed L are left out."""
     a, p, j = c.a, c.p, c.coord
     moving, driven = a not in fixed, c.length is None
 
@@ -843,24 +845,13 @@ def _delta(d, x, y):
 
 
 def _rhs(c, grad, pos, d, q, qrate, vel, qd):
-    """Right-hand side r of Re(conj(G) V) = r for one constraint.
+    """Right-hand side r of Re(conj(G) V) = r for a line or a coordinate (a distance's is
+    :func:`_dist_rhs`).
 
     r = -(part of dg/dt linear in the known rates ``d``) for velocities; for
     accelerations (``vel`` given) also minus the quadratic part 2 B(V, V).
     ``grad`` is the constraint's gradient G with respect to the unknown point.
     """
-    if isinstance(c, Dist):           # g = |P - A|^2 - L^2, G = 2 (P - A), P unknown
-        va = d.get(c.a)
-        r = 0.0 if va is None else (grad.conjugate() * va).real
-        if c.length is None:
-            r = r + 2.0 * q[c.coord] * qrate[c.coord]
-        if vel is not None:
-            dv = _delta(vel, c.p, c.a)
-            if dv is not None:
-                r = r - 2.0 * (dv.real * dv.real + dv.imag * dv.imag)
-            if c.length is None:
-                r = r + 2.0 * qd[c.coord] * qd[c.coord]
-        return r
     if isinstance(c, Line):           # g = cross(C - B, P - B) - value
         r = 0.0
         dcb, dpb = _delta(d, c.c, c.b), _delta(d, c.p, c.b)

@@ -248,7 +248,7 @@ class Plan:
                                qdd[lo:hi] if np.ndim(qdd) else qdd)
                 for kernel in self.kernels:
                     kernel(part, table[:, lo:hi])
-            if not np.isfinite(table).all():
+            if not _finite(table):
                 return None
         except LinkcliError:
             return None
@@ -271,7 +271,7 @@ class Plan:
         result.units = dict(self.units)
         for i, name in self.others:
             table[i, ...], result.units[name] = _value(mech, name, kin, loads, context)
-        if not np.isfinite(table).all():
+        if not _finite(table):
             _require_finite(mech, dict(zip(self.names, table)))
         result.values = dict(zip(self.names, table))
         for p, l_unit, l_factor in self.points:
@@ -331,6 +331,12 @@ def _collect_each(mech, solver, kin, names, result):
         result.units[p] = l_unit
     _require_finite(mech, {**result.values, **result.points})
     return result
+
+
+def _finite(table) -> bool:
+    """Whether every value is finite: one sum decides the common case (a NaN or an infinity
+    makes it so); a sum that overflows is looked at value by value."""
+    return math.isfinite(table.sum()) or bool(np.isfinite(table).all())
 
 
 def _require_finite(mech, named):

@@ -130,8 +130,11 @@ def circle_line(a, r, b, c, value, branch, flat=False, frame=None):
     d the distance of A from the line.  ``frame``: the line's (u, e), when known.
     """
     u, e = line_frame(b, c, value) if frame is None else frame
-    rel = (a - b) * u.conjugate()
-    dist = rel.imag - e
+    level = _is(u, 1.0)                 # a guide along +x (no rotation to undo) ...
+    rel = a if _is(b, 0.0) else a - b   # ... through the origin (no shift)
+    if not level:
+        rel = rel * u.conjugate()
+    dist = rel.imag if _is(e, 0.0) else rel.imag - e
     disc = dist * dist
     if writable(disc, r):
         np.subtract(r * r, disc, out=disc)
@@ -148,7 +151,11 @@ def circle_line(a, r, b, c, value, branch, flat=False, frame=None):
         along = np.add(rel.real, s, out=s) if branch > 0 else np.subtract(rel.real, s, out=s)
     else:
         along = rel.real + s if branch > 0 else rel.real - s
-    p = b + _complex(along, e) * u
+    p = _complex(along, e)
+    if not level:
+        p = p * u
+    if not _is(b, 0.0):
+        p = b + p
     if not flat:
         return p, short
     if not negative:                    # |d| <= r: every noise below the bound
@@ -167,6 +174,12 @@ def circle_line(a, r, b, c, value, branch, flat=False, frame=None):
     else:
         noise = TOGGLE * (r * r + np.abs(dist) * (noise + np.abs(b) + np.abs(e) + r))
     return p, short, np.abs(disc) <= noise
+
+
+def _is(x, value) -> bool:
+    """Whether ``x`` is the number ``value`` (not an array): an operation with it may be
+    skipped (multiplying by 1, adding 0 change no finite value)."""
+    return type(x) in (float, complex) and x == value
 
 
 def _top(x) -> float:

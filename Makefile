@@ -28,9 +28,9 @@ install: $(VENV)/.installed
 run: $(VENV)/.installed
 	$(BIN)/linkcli solve $(EXAMPLE)
 
-## test: install with test extras, run the test suite and check every answer key
+## test: install with test extras, run the test suite (on every core) and check every answer key
 test: $(VENV)/.installed-test
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n auto
 	$(BIN)/linkcli check mechanisms/
 
 check: $(VENV)/.installed

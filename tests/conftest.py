@@ -29,3 +29,17 @@ def pytest_terminal_summary(terminalreporter):
         detail = ", ".join(f"{k} {v}" for k, v in sorted(counts.items()) if k != "cases")
         terminalreporter.write_line(f"  {group}: {counts['cases']} cases"
                                     + (f" ({detail})" if detail else ""))
+
+
+# with pytest-xdist (`make test` runs `pytest -n auto`) the counts are made in the workers:
+# each hands its own to the controller, which adds them up for the summary
+def pytest_sessionfinish(session):
+    output = getattr(session.config, "workeroutput", None)
+    if output is not None:
+        output["fuzz_counts"] = {group: dict(c) for group, c in _FUZZ_COUNTS.items()}
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_testnodedown(node, error):
+    for group, counts in getattr(node, "workeroutput", {}).get("fuzz_counts", {}).items():
+        _FUZZ_COUNTS[group].update(counts)

@@ -257,3 +257,39 @@ def test_conditioning_from_constant_gradient_norms_is_the_computed_one(path):
         checked += 1
     if not checked:
         pytest.skip("no dyad with constant gradient norms")
+
+
+def test_a_refused_position_in_a_later_block_is_named_as_in_one_pass(monkeypatch):
+    """Blocks solved on several threads: a driver value that cannot be assembled in the
+    second block makes the whole array refused, naming that value, as one pass does."""
+    import sys
+    sys.path.insert(0, os.path.join(ROOT, "benchmarks"))
+    from speed_accuracy import SIXBAR
+    from linkcli.errors import AssemblyError
+    mech = linkcli.loads(SIXBAR).model
+    block = quantities.BLOCK
+    q = np.linspace(0.12, 0.20, 2 * block + 7)
+    q[block + 5] = 0.5                      # the actuator far too long for the rocker
+    monkeypatch.setattr(quantities, "WORKERS", 2)
+    with pytest.raises(AssemblyError) as threads:
+        quantities.evaluate(mech, q)
+    monkeypatch.setattr(quantities, "BLOCK", 10 ** 9)
+    with pytest.raises(AssemblyError) as whole:
+        quantities.evaluate(mech, q)
+    assert str(threads.value) == str(whole.value)
+    assert "0.5 m" in str(threads.value), str(threads.value)
+
+
+@pytest.mark.parametrize("workers", [1, 2, 3])
+def test_blocks_on_any_number_of_threads_give_the_same_values(workers, monkeypatch):
+    import sys
+    sys.path.insert(0, os.path.join(ROOT, "benchmarks"))
+    from speed_accuracy import SIXBAR
+    mech = linkcli.loads(SIXBAR).model
+    q = np.linspace(0.12, 0.20, 3 * quantities.BLOCK + 11)
+    monkeypatch.setattr(quantities, "WORKERS", 1)
+    one = quantities.evaluate(mech, q).values
+    monkeypatch.setattr(quantities, "WORKERS", workers)
+    many = quantities.evaluate(mech, q).values
+    for name, value in one.items():
+        assert np.array_equal(many[name], value), name

@@ -15,6 +15,7 @@ translates) it is a located SolveError, never NaN.
 from __future__ import annotations
 
 import math
+import os
 import weakref
 from dataclasses import dataclass, field
 
@@ -33,6 +34,9 @@ from linkcli.model.units import ANGLE, FORCE, LENGTH, TORQUE
 TWO_PI = 2 * math.pi
 #: a long array of driver values is solved this many positions at a time (see Plan._in_blocks)
 BLOCK = 1 << 15
+#: on at most this many threads (the processors this process may use, up to 4)
+WORKERS = min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity")
+              else os.cpu_count() or 1)
 #: a point is at rest (its velocity has no direction) where its speed is at most AT_REST
 #: times the largest speed of the mechanism's points; a body translates where its angular
 #: velocity is at most AT_REST times the largest rate of the mechanism (the largest angular
@@ -233,21 +237,35 @@ class Plan:
     def _in_blocks(self, mech, solver, order, qs, qd, qdd):
         """:meth:`evaluate` of a long 1-D array of driver values, BLOCK positions at a time:
         the arrays of a block stay in the processor's cache, several times faster than
-        passes over arrays of millions.  The values are the whole-array ones (every
+        passes over arrays of millions.  The blocks are solved on up to :data:`WORKERS`
+        threads at once (NumPy's loops run without the interpreter's lock; each block writes
+        its own columns of the table).  The values are the whole-array ones (every
         operation is position by position).  None when anything is refused or not of the
         driver values' shape: the whole-array path then decides, and words its errors for
         every position at once.  ``qs``, ``qd``, ``qdd``: the driver's values and rates (SI)."""
         if qs.ndim != 1 or solver.n != 1 or any(np.ndim(x) and np.shape(x) != qs.shape
                                                 for x in (qd, qdd)):
             return None
+        table = np.empty((len(self.names), qs.size))
+
+        def solve(lo):
+            hi = min(qs.size, lo + BLOCK)
+            part = _solved(solver, order, qs[lo:hi], qd[lo:hi] if np.ndim(qd) else qd,
+                           qdd[lo:hi] if np.ndim(qdd) else qdd)
+            for kernel in self.kernels:
+                kernel(part, table[:, lo:hi])
+
+        starts = range(0, qs.size, BLOCK)
         try:
-            table = np.empty((len(self.names), qs.size))
-            for lo in range(0, qs.size, BLOCK):
-                hi = min(qs.size, lo + BLOCK)
-                part = _solved(solver, order, qs[lo:hi], qd[lo:hi] if np.ndim(qd) else qd,
-                               qdd[lo:hi] if np.ndim(qdd) else qdd)
-                for kernel in self.kernels:
-                    kernel(part, table[:, lo:hi])
+            workers = min(WORKERS, len(starts))
+            if workers > 1:
+                from concurrent.futures import ThreadPoolExecutor
+                with ThreadPoolExecutor(workers) as pool:
+                    for _ in pool.map(solve, starts):
+                        pass
+            else:
+                for lo in starts:
+                    solve(lo)
             if not _finite(table):
                 return None
         except LinkcliError:

@@ -293,3 +293,20 @@ def test_blocks_on_any_number_of_threads_give_the_same_values(workers, monkeypat
     many = quantities.evaluate(mech, q).values
     for name, value in one.items():
         assert np.array_equal(many[name], value), name
+
+
+@pytest.mark.parametrize("key", ["four-bar", "crank-slider"])
+def test_the_benchmarks_straight_line_replicas_are_linkcli_bit_for_bit(key):
+    """benchmarks/overhead.py times linkcli's algorithm written straight-line to split a
+    call's cost into its operations and its structure: that holds only while the replica
+    does linkcli's operations exactly, so the values must agree to the last bit."""
+    import sys
+    sys.path.insert(0, os.path.join(ROOT, "benchmarks"))
+    from overhead import STRAIGHT
+    from speed import case
+    c = case(key)
+    for q in (c.grid(360), c.grid(7) + 0.1):
+        mine, straight = c.solve(q), STRAIGHT[key](q, c.qd, c.qdd)
+        assert set(mine) == set(straight)
+        for name, value in mine.items():
+            assert np.array_equal(value, straight[name]), name

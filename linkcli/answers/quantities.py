@@ -369,8 +369,10 @@ def _require_finite(mech, named):
 
 def _step(mech, name):
     """(kernel, display unit) of ``name``: ``kernel(kin, out)`` writes the value in display
-    units into ``out`` (an array of the driver values' shape); (None, None): the value and
-    its unit come from :func:`_value` (the driver, textbook kinds, loads)."""
+    units into ``out`` (an array of the driver values' shape); for an angle or its rates an
+    :class:`AngleRow` instead, evaluated with the plan's other angles (:class:`Angles`);
+    (None, None): the value and its unit come from :func:`_value` (the driver, textbook
+    kinds, loads)."""
     base_name, order = split_rate(name)
     quantity = mech.quantities.get(base_name)
     if quantity is None or quantity.kind not in ("angle", "length", "x", "y") \

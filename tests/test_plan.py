@@ -280,7 +280,7 @@ def test_a_refused_position_in_a_later_block_is_named_as_in_one_pass(monkeypatch
     assert "0.5 m" in str(threads.value), str(threads.value)
 
 
-@pytest.mark.parametrize("workers", [1, 2, 3])
+@pytest.mark.parametrize("workers", [2, 3])
 def test_blocks_on_any_number_of_threads_give_the_same_values(workers, monkeypatch):
     import sys
     sys.path.insert(0, os.path.join(ROOT, "benchmarks"))

@@ -181,12 +181,12 @@ class Plan:
             else "length"
         self.q_factors = [mech.units.display(driver, i)[1] for i in range(3)]
         self.steps = [_step(mech, name) for name in self.names]
-        self.generic = any(fn is None for fn, _ in self.steps)
         #: every name's display unit, in order (those of _value's names come with their values)
         self.units = {name: unit for name, (_, unit) in zip(self.names, self.steps)}
         #: (row, name) of the names evaluated by _value (their units come with the values)
         self.others = [(i, name) for i, (name, (fn, _)) in enumerate(zip(self.names, self.steps))
                        if fn is None]
+        self.generic = bool(self.others)
         angles = {i: fn for i, (fn, _) in enumerate(self.steps) if isinstance(fn, AngleRow)}
         #: kernel(kin, table) writing rows of the table: the angles together, then each other
         self.kernels = ([Angles(angles)] if angles else []) + \
@@ -458,13 +458,13 @@ class Angles:
 
     def __call__(self, kin, table):
         shape = table.shape[1:]
-        z = self._stack(kin.pos, shape, 0j)
+        z = self._stack(kin.pos, shape)
         w = zz = None
         if self.rates >= 1:
-            w = self._stack(kin.vel, shape, 0j)
+            w = self._stack(kin.vel, shape)
             w /= z
         if self.rates >= 2:
-            zz = self._stack(kin.acc, shape, 0j)
+            zz = self._stack(kin.acc, shape)
             zz /= z
         column = (-1,) + (1,) * len(shape)      # a value per vector, down the table
         for order, rows, index, factors, signed in self.slots:
@@ -475,8 +475,7 @@ class Angles:
             if order == 0:
                 v = z[index]
                 np.arctan2(v.imag, v.real, out=out)
-                np.add(out, TWO_PI, out=out, where=out <= 0)
-                np.copyto(out, 0.0, where=out > TWO_PI - 1e-12)
+                _wrap_principal(out)
                 if signed is not None:
                     np.subtract(out, TWO_PI, out=out, where=(out > math.pi) & signed.reshape(column))
             elif order == 1:
@@ -499,14 +498,14 @@ class Angles:
             if type(rows) is not slice:
                 table[rows] = out
 
-    def _stack(self, points, shape, zero):
+    def _stack(self, points, shape):
         """(P_b - P_a) of every pair, stacked; an absent point (fixed: no rates) is 0."""
         out = np.empty((len(self.pairs),) + shape, complex)
         for i, (a, b) in enumerate(self.pairs):
             row = out[i, ...]
             pa, pb = points.get(a), points.get(b)
             if pa is None:
-                row[...] = zero if pb is None else pb
+                row[...] = 0j if pb is None else pb
             elif pb is None:
                 np.negative(pa, out=row)
             else:
@@ -592,10 +591,17 @@ def wrap_angle(value, principal=False):
     adding 2 pi to the negative ones is the same as the modulo, and cheaper.
     """
     if principal:
-        value = value + np.where(value < 0, TWO_PI, 0.0)
-    else:
-        value = np.mod(value, TWO_PI)
+        return _wrap_principal(np.array(value, dtype=float))
+    value = np.mod(value, TWO_PI)
     return np.where(value > TWO_PI - 1e-12, 0.0, value)
+
+
+def _wrap_principal(out):
+    """:func:`wrap_angle` of angles in (-pi, pi], in place: those <= 0 gain 2 pi (-0 and 0
+    become 2 pi), those within 1e-12 rad of 2 pi are 0."""
+    np.add(out, TWO_PI, out=out, where=out <= 0)
+    np.copyto(out, 0.0, where=out > TWO_PI - 1e-12)
+    return out
 
 
 def signed_angle(value):

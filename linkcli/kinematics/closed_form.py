@@ -317,15 +317,11 @@ class Solver:
             pivot, length, reverse = group.constraints
             p = dyads.cis(q[group.coord])
             base = pos[pivot]
-            if type(base) is complex and p.ndim:    # a fixed pivot (none to add at 0)
-                p *= -length if reverse else length
-                if base:
-                    p += base
-                return p, None
-            if not dyads.writable(p, pos[pivot]):
-                return pos[pivot] + (-length if reverse else length) * p, None
+            if not dyads.writable(p, base):
+                return base + (-length if reverse else length) * p, None
             p *= -length if reverse else length
-            p += pos[pivot]
+            if not dyads.is_number(base, 0.0):     # nothing to add about the origin
+                p += base
             return p, None
         if kind == "driver-coord":
             line, coord = group.constraints
@@ -513,7 +509,7 @@ class DriverRates:
         if arm is None:
             centre = kin.pos[self.pivot]
             point = kin.pos[self.point]     # about a fixed pivot at the origin: P itself
-            arm = kin.linear[self.index] = point if type(centre) is complex and not centre \
+            arm = kin.linear[self.index] = point if dyads.is_number(centre, 0.0) \
                 and type(point) is np.ndarray else point - centre
         j = self.j
         if vel is None:
@@ -596,7 +592,7 @@ def _rhs_of(c, unknown, fixed):
     once; a line through fixed points, on which the unknown point runs, gives 0."""
     if isinstance(c, Dist):
         return _dist_rhs(c, fixed)
-    if isinstance(c, Line) and c.p == unknown and c.b in fixed and c.c in fixed:
+    if _fixed_guide(c, unknown, fixed):
         return _no_rhs
     if isinstance(c, Coord):
         j = c.coord
@@ -791,6 +787,12 @@ def _least(x):
     return x.min() if type(x) is np.ndarray else np.min(x)
 
 
+def _fixed_guide(c, unknown, fixed) -> bool:
+    """Whether ``c`` is a line through fixed points on which the unknown point runs: its
+    gradient i (C - B) is a constant, and no known rate enters its right-hand side."""
+    return isinstance(c, Line) and c.p == unknown and c.b in fixed and c.c in fixed
+
+
 def _constant_norms(group, fixed):
     """|G_1| |G_2| of a group whose constraint gradients keep their lengths (see
     :func:`_grad`): 2 L for a distance of fixed length L (P on its circle), |C - B| for a
@@ -803,7 +805,7 @@ def _constant_norms(group, fixed):
     for c in group.constraints:
         if isinstance(c, Dist) and c.length is not None:
             out *= 2.0 * abs(c.length)
-        elif isinstance(c, Line) and c.p == group.point and c.b in fixed and c.c in fixed:
+        elif _fixed_guide(c, group.point, fixed):
             out *= abs(fixed[c.c] - fixed[c.b])
         elif isinstance(c, Coord):
             pass
@@ -819,7 +821,7 @@ def _grad_of(c, unknown, fixed):
     if isinstance(c, Dist):
         p, a = c.p, c.a
         return lambda pos: 2.0 * (pos[p] - pos[a])
-    if isinstance(c, Line) and c.p == unknown and c.b in fixed and c.c in fixed:
+    if _fixed_guide(c, unknown, fixed):
         return _grad(c, fixed, unknown)
     if isinstance(c, Line):
         return lambda pos: _grad(c, pos, unknown)

@@ -130,11 +130,11 @@ def circle_line(a, r, b, c, value, branch, flat=False, frame=None):
     d the distance of A from the line.  ``frame``: the line's (u, e), when known.
     """
     u, e = line_frame(b, c, value) if frame is None else frame
-    level = _is(u, 1.0)                 # a guide along +x (no rotation to undo) ...
-    rel = a if _is(b, 0.0) else a - b   # ... through the origin (no shift)
+    level = is_number(u, 1.0)                 # a guide along +x (no rotation to undo) ...
+    rel = a if is_number(b, 0.0) else a - b   # ... through the origin (no shift)
     if not level:
         rel = rel * u.conjugate()
-    dist = rel.imag if _is(e, 0.0) else rel.imag - e
+    dist = rel.imag if is_number(e, 0.0) else rel.imag - e
     disc = dist * dist
     if writable(disc, r):
         np.subtract(r * r, disc, out=disc)
@@ -154,7 +154,7 @@ def circle_line(a, r, b, c, value, branch, flat=False, frame=None):
     p = _complex(along, e)
     if not level:
         p = p * u
-    if not _is(b, 0.0):
+    if not is_number(b, 0.0):
         p = b + p
     if not flat:
         return p, short
@@ -176,7 +176,7 @@ def circle_line(a, r, b, c, value, branch, flat=False, frame=None):
     return p, short, np.abs(disc) <= noise
 
 
-def _is(x, value) -> bool:
+def is_number(x, value) -> bool:
     """Whether ``x`` is the number ``value`` (not an array): an operation with it may be
     skipped (multiplying by 1, adding 0 change no finite value)."""
     return type(x) in (float, complex) and x == value
@@ -206,11 +206,6 @@ def writable(x, *others) -> bool:
             if shape and shape != x.shape:
                 return False
     return True
-
-
-def _anywhere(mask) -> bool:
-    """np.any(mask), without its dispatch for arrays."""
-    return mask.any() if isinstance(mask, np.ndarray) else bool(np.any(mask))
 
 
 def line_line(b1, u1, e1, b2, u2, e2):

@@ -36,9 +36,10 @@ test: $(VENV)/.installed-test
 check: $(VENV)/.installed
 	$(BIN)/linkcli check mechanisms/
 
-## bench: speed against hand-written NumPy and pylinkage (installed if PyPI is reachable)
-## at 360 ... 10^7 positions, with accuracy and peak memory; where a call's time goes at 360
-## (tables and charts in benchmarks/out/; a few minutes)
+## bench: speed against hand-written NumPy and pylinkage, and of linkcli's compiled loop
+## (numba and pylinkage installed if PyPI is reachable) at 360 ... 10^7 positions, with
+## accuracy and peak memory; where a call's time goes at 360 (tables and charts in
+## benchmarks/out/; a few minutes)
 bench: $(VENV)/.installed-test
 	$(BIN)/python -m pip install --quiet pylinkage numba || echo "peers not installed: timed without them"
 	$(BIN)/python benchmarks/speed.py

@@ -10,6 +10,8 @@ at N = 360, 10^4, 10^6 and 10^7 driver positions:
   resident memory is read);
 - hand-written NumPy of the same closed form (the same blocks at 10^7, with the same
   malloc settings, ``linkcli.answers.memory``), the speed to compare with;
+- linkcli's compiled loop (``kinematics.compiled``, the ``jit`` extra) when numba is
+  installed: the same call with the loop switched on;
 - peers when importable: pylinkage's numba path (``Linkage.step_fast_with_kinematics``,
   joint coordinates and their two rates, no angles) for the four-bar and the
   crank-slider (it has no link of driven length for the six-bar), up to 10^6; its
@@ -47,6 +49,7 @@ sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, HERE)
 
 import linkcli  # noqa: E402
+from linkcli.kinematics import compiled  # noqa: E402
 from speed_accuracy import CRANK_SLIDER, FOURBAR, SIXBAR, hand_fourbar  # noqa: E402
 
 OUT = os.path.join(HERE, "out")
@@ -186,7 +189,10 @@ class Case:
     def grid(self, n):
         return self.lo + (self.hi - self.lo) * (np.arange(n) + 0.5) / n
 
-    def solve(self, q):
+    def solve(self, q, jit=False):
+        """linkcli's values at ``q``; ``jit``: by the compiled loop (kinematics.compiled),
+        else NumPy (the switch is set at each call, the same small cost either way)."""
+        compiled.switch(jit)
         return self.linkage.solve(q, names=self.names).values
 
     def by_hand(self, q):
@@ -249,7 +255,8 @@ def child(key, method, n):
     from linkcli.answers.memory import keep_freed_memory
     c = case(key)
     keep_freed_memory()                     # both with the malloc settings linkcli's solves
-    func = c.solve if method == "linkcli" else c.by_hand    # of blocks take
+    jit = method == "compiled" and compiled.switch(True)    # of blocks take
+    func = c.by_hand if method == "hand" else lambda q: c.solve(q, jit=jit)
     func(c.grid(BLOCK))                     # warm: plans and solvers built
     before = high_water()
     seconds = in_blocks(func, c, n)
@@ -295,6 +302,19 @@ def accuracy(c):
     return closure, out[0], out[1], agree
 
 
+def compiled_against_numpy(c) -> float:
+    """The largest difference of the compiled loop's values from NumPy's on the accuracy
+    grid (angles in rad, others relative)."""
+    q = c.grid(ACCURACY_N)
+    mine, jit = c.solve(q), c.solve(q, jit=True)
+    worst = 0.0
+    for name in c.names:
+        angle = not name.startswith(("x", "y")) and name in c.base
+        scale = 1.0 if angle else max(float(np.max(np.abs(mine[name]))), 1e-300)
+        worst = max(worst, float(np.max(np.abs(_diff(jit[name], mine[name], angle)))) / scale)
+    return worst
+
+
 # --- the run ---------------------------------------------------------------------------
 def machine() -> str:
     model = platform.processor() or "unknown CPU"
@@ -322,14 +342,21 @@ def main(argv=None):
         print(json.dumps(child(args.child[0], args.child[1], int(args.child[2]))))
         return 0
     sizes = [n for n in SIZES if not args.quick or n <= 10 ** 6]
+    jit = compiled.switch(True)             # numba installed: linkcli's compiled loop too
+    if jit:
+        case("crank-slider").solve(np.linspace(0, 1, 8), jit=True)     # compiled or loaded
     os.makedirs(OUT, exist_ok=True)
-    rows, checks = [], {}
+    rows, checks, agreement = [], {}, {}
     for key in args.mechanism or CASES:
         c = case(key)
         c.solve(c.grid(8))
         closure, fd_mine, fd_hand, agree = accuracy(c)
         print(f"{key}: closure {closure:.1e}, rates vs FD {fd_mine:.1e} (hand {fd_hand:.1e}), "
               f"linkcli - hand {agree:.1e}", flush=True)
+        if jit:
+            agreement[key] = same = compiled_against_numpy(c)
+            print(f"  compiled loop against NumPy: {same:.1e} (angles in rad, others relative)",
+                  flush=True)
         peer = pylinkage_peer(key)
         if peer is not None:
             peer[0](8)                  # compiled (numba) before timing
@@ -342,15 +369,15 @@ def main(argv=None):
             if n <= 10 ** 6:
                 q = c.grid(n)
                 budget = 2.0 if n < 10 ** 6 else 1.0
-                funcs = [lambda: c.solve(q), lambda: c.by_hand(q)]
+                funcs = {"linkcli": lambda: c.solve(q, jit=False), "hand": lambda: c.by_hand(q)}
+                if jit:
+                    funcs["compiled"] = lambda: c.solve(q, jit=True)
                 if peer is not None:
-                    funcs.append(lambda: peer[0](n))
-                times = median_times(funcs, budget, args.repeat)
-                row["linkcli"], row["hand"] = times[0] / n, times[1] / n
-                if peer is not None:
-                    row["pylinkage"] = times[2] / n
+                    funcs["pylinkage"] = lambda: peer[0](n)
+                times = median_times(list(funcs.values()), budget, args.repeat)
+                row.update({k: t / n for k, t in zip(funcs, times)})
             else:
-                for method in ("linkcli", "hand"):
+                for method in ("linkcli", "hand") + (("compiled",) if jit else ()):
                     run = subprocess.run([sys.executable, os.path.abspath(__file__), "--child",
                                           key, method, str(n)], capture_output=True, text=True,
                                          check=True)
@@ -359,6 +386,8 @@ def main(argv=None):
                     row[method + "_rss"] = got["rss_MB"]
             rows.append(row)
             other = f"  pylinkage {row['pylinkage'] * 1e9:8.1f} ns/pos" if "pylinkage" in row \
+                else ""
+            other += f"  compiled {row['compiled'] * 1e9:8.1f} ns/pos" if "compiled" in row \
                 else ""
             print(f"  N={n:<9d} linkcli {row['linkcli'] * 1e9:8.1f} ns/pos  hand "
                   f"{row['hand'] * 1e9:8.1f} ns/pos  ratio {row['linkcli'] / row['hand']:.2f}"
@@ -374,6 +403,13 @@ def main(argv=None):
         peers.append(f"{name} {getattr(module, '__version__', '?')}, numba path "
                      "(step_fast_with_kinematics: joint coordinates and their rates, no angles), "
                      f"its output joint against linkcli's, relative: {agree or 'not run'}")
+    if jit:
+        import numba
+        peers.append(f"linkcli compiled: numba {numba.__version__}, against linkcli's NumPy "
+                     "values (angles in rad, others relative): "
+                     + ", ".join(f"{k} {v:.1e}" for k, v in agreement.items()))
+    else:
+        peers.append("linkcli compiled: numba not installed, skipped (pip install numba)")
     text = table(rows, peers)
     print("\n" + text)
     with open(os.path.join(OUT, "speed.md"), "w", encoding="utf-8") as handle:
@@ -392,9 +428,10 @@ def table(rows, peers) -> str:
              "(peak RSS of that process). Accuracy on 10^4 positions: closure residual "
              "(relative to size^2), rates against five-point finite differences (relative; the "
              "differences are good to ~1e-8), linkcli against hand-written.", "",
-             "| mechanism | N | linkcli | hand-written | ratio | pylinkage (numba) "
-             "| peak RSS linkcli / hand | closure | rates vs FD (hand) | linkcli - hand |",
-             "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+             "| mechanism | N | linkcli | hand-written | ratio | linkcli compiled (ratio) "
+             "| pylinkage (numba) | peak RSS linkcli / hand | closure | rates vs FD (hand) "
+             "| linkcli - hand |",
+             "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
 
     def shown(seconds, n):
         return f"{seconds * n * 1e3:.3f} ms" if n == 360 else f"{seconds * 1e9:.0f} ns"
@@ -402,10 +439,15 @@ def table(rows, peers) -> str:
         n = r["N"]
         mine, hand = shown(r["linkcli"], n), shown(r["hand"], n)
         peer = shown(r["pylinkage"], n) if "pylinkage" in r else ""
+        jit = f"{shown(r['compiled'], n)} ({r['compiled'] / r['hand']:.2f}x)" \
+            if "compiled" in r else ""
         rss = f"{r['linkcli_rss']:.0f} / {r['hand_rss']:.0f} MB" if "linkcli_rss" in r else ""
+        if "compiled_rss" in r:
+            rss += f" (compiled {r['compiled_rss']:.0f} MB)"
         size = str(n) if n < 10 ** 4 else f"10^{round(math.log10(n))}"
         lines.append(f"| {r['mechanism']} | {size} | {mine} | {hand} | "
-                     f"{r['linkcli'] / r['hand']:.2f}x | {peer} | {rss} | {r['closure']:.1e} | "
+                     f"{r['linkcli'] / r['hand']:.2f}x | {jit} | {peer} | {rss} | "
+                     f"{r['closure']:.1e} | "
                      f"{r['fd']:.1e} ({r['fd_hand']:.1e}) | {r['agree']:.1e} |")
     lines += ["", "Peers: " + "; ".join(peers) + "."]
     return "\n".join(lines)
@@ -429,6 +471,13 @@ def chart(rows) -> str:
         if peer:
             ax.loglog(*zip(*peer), ":^", color=f"C{i}", label=f"{key}, pylinkage (numba)")
         ratio.semilogx(n, np.array(a) / np.array(b), "-o", color=f"C{i}", label=key)
+        jit = [(r["N"], r["compiled"] * 1e9, r["compiled"] / r["hand"]) for r in rows
+               if r["mechanism"] == key and "compiled" in r]
+        if jit:
+            ax.loglog([j[0] for j in jit], [j[1] for j in jit], "-.d", color=f"C{i}",
+                      label=f"{key}, linkcli compiled")
+            ratio.semilogx([j[0] for j in jit], [j[2] for j in jit], "-.d", color=f"C{i}",
+                           label=f"{key}, compiled")
     ax.set_xlabel("positions N")
     ax.set_ylabel("time per position [ns]")
     ax.set_title("positions, velocities, accelerations")

@@ -25,6 +25,8 @@ from linkcli.answers.memory import LONG, keep_freed_memory
 from linkcli.errors import InputError, LinkcliError, SolveError
 from linkcli.forces import motion
 from linkcli.kinematics.closed_form import own_coordinates, where_text
+from linkcli.kinematics.compiled import ANGLE as ANGLE_PROBE, X as X_PROBE, Y as Y_PROBE, \
+    compiled, program_of
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import FRAME, REPORT_SECTIONS, VIBRATION, Quantity, split_rate
 from linkcli.forces.statics import unknown_load
@@ -34,6 +36,9 @@ from linkcli.model.units import ANGLE, FORCE, LENGTH, TORQUE
 TWO_PI = 2 * math.pi
 #: a long array of driver values is solved this many positions at a time (see Plan._in_blocks)
 BLOCK = 1 << 15
+#: the compiled loop (kinematics.compiled), which makes no temporaries, solves this many
+#: at a time: from 8192 positions on, two threads pay their start
+COMPILED_BLOCK = 1 << 12
 #: on at most this many threads (the processors this process may use, up to 4)
 WORKERS = min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity")
               else os.cpu_count() or 1)
@@ -194,6 +199,15 @@ class Plan:
              if fn is not None and not isinstance(fn, AngleRow)]
         l_unit, l_factor = mech.units.display("length", 0)
         self.points = [(p, l_unit, l_factor) for p in mech.report.get("points", [])]
+        #: the names as probes of a compiled solve (kinematics.compiled), None when one is
+        #: not an angle, a coordinate or one of their rates
+        self.probes = [_probe(fn) for fn, _ in self.steps]
+        if None in self.probes or self.wants_loads:
+            self.probes = None
+        else:           # the report's points: x and y rows after the names'
+            self.probes += [(axis, p, None, 0, f, False) for p, _, f in self.points
+                            for axis in (X_PROBE, Y_PROBE)]
+        self._program = False           # (program, probes) built at the first compiled call
 
     def order(self, mech) -> int:
         """The highest order of rates the names need (checked at the first call)."""
@@ -207,6 +221,12 @@ class Plan:
         solver = solver_for(mech, self.method, self.tol)
         order = self.order(mech)
         driver = self._driver_si(mech.driver, q, qdot, qddot)
+        if q is not None and self.probes is not None and compiled() is not None:
+            program = self._compiled_program(solver)
+            result = None if program is None else \
+                self._in_blocks(mech, solver, order, *driver, program=program)
+            if result is not None:
+                return result
         if q is not None and np.size(q) >= LONG:
             keep_freed_memory()
         if q is not None and np.size(q) > BLOCK and self._blockwise:
@@ -234,45 +254,71 @@ class Plan:
                 driver.rate if qdot is None else np.asarray(qdot, float) * f1,
                 driver.accel if qddot is None else np.asarray(qddot, float) * f2)
 
-    def _in_blocks(self, mech, solver, order, qs, qd, qdd):
-        """:meth:`evaluate` of a long 1-D array of driver values, BLOCK positions at a time:
+    def _in_blocks(self, mech, solver, order, qs, qd, qdd, program=None):
+        """:meth:`evaluate` of a 1-D array of driver values, BLOCK positions at a time:
         the arrays of a block stay in the processor's cache, several times faster than
         passes over arrays of millions.  The blocks are solved on up to :data:`WORKERS`
-        threads at once (NumPy's loops run without the interpreter's lock; each block writes
-        its own columns of the table).  The values are the whole-array ones (every
-        operation is position by position).  None when anything is refused or not of the
-        driver values' shape: the whole-array path then decides, and words its errors for
-        every position at once.  ``qs``, ``qd``, ``qdd``: the driver's values and rates (SI)."""
-        if qs.ndim != 1 or solver.n != 1 or any(np.ndim(x) and np.shape(x) != qs.shape
-                                                for x in (qd, qdd)):
+        threads at once (NumPy's loops, and the compiled loop, run without the interpreter's
+        lock; each block writes its own columns of the table).  The values are the
+        whole-array ones (every operation is position by position).  ``program``: the
+        (program, probes) of the compiled loop (``kinematics.compiled``) that solves each
+        block, else NumPy.  None when anything is refused or not of the driver values'
+        shape: the whole-array path then decides, and words its errors for every position
+        at once.  ``qs``, ``qd``, ``qdd``: the driver's values and rates (SI)."""
+        if qs.ndim != 1 or not qs.size or solver.n != 1 or \
+                any(np.ndim(x) and np.shape(x) != qs.shape for x in (qd, qdd)):
             return None
-        table = np.empty((len(self.names), qs.size))
+        table = np.empty((len(self.names) + (2 * len(self.points) if program else 0),
+                          qs.size))
 
-        def solve(lo):
-            hi = min(qs.size, lo + BLOCK)
-            part = _solved(solver, order, qs[lo:hi], qd[lo:hi] if np.ndim(qd) else qd,
-                           qdd[lo:hi] if np.ndim(qdd) else qdd)
+        size = BLOCK if program is None else COMPILED_BLOCK
+
+        def solve(lo) -> bool:
+            hi = min(qs.size, lo + size)
+            q, rate, accel = qs[lo:hi], qd[lo:hi] if np.ndim(qd) else qd, \
+                qdd[lo:hi] if np.ndim(qdd) else qdd
+            if program is not None:
+                return program[0].run(program[1], q, rate, accel, order, table, start=lo)
+            part = _solved(solver, order, q, rate, accel)
             for kernel in self.kernels:
                 kernel(part, table[:, lo:hi])
+            return True
 
-        starts = range(0, qs.size, BLOCK)
+        starts = range(0, qs.size, size)
         try:
             workers = min(WORKERS, len(starts))
             if workers > 1:
                 from concurrent.futures import ThreadPoolExecutor
                 with ThreadPoolExecutor(workers) as pool:
-                    for _ in pool.map(solve, starts):
-                        pass
+                    done = all(list(pool.map(solve, starts)))
             else:
-                for lo in starts:
-                    solve(lo)
-            if not _finite(table):
+                done = all([solve(lo) for lo in starts])
+            if not done or (program is None and not _finite(table)):
                 return None
         except LinkcliError:
             return None
-        result = Result(mech, kinematics=Later(solver, qs, qd, qdd, order))
+        return self._tabled(mech, table, Later(solver, qs, qd, qdd, order))
+
+    def _compiled_program(self, solver):
+        """(program, probes) of the compiled loop for these names on ``solver``, None where
+        it cannot express them (worked out at the first call)."""
+        if self._program is False:
+            program = program_of(solver) if self.probes is not None and \
+                self.method == "closed" else None
+            probes = None if program is None else program.probes(self.probes)
+            self._program = None if probes is None else (program, probes)
+        return self._program
+
+    def _tabled(self, mech, table, kinematics) -> Result:
+        """The result of the rows of ``table``, one per name, then x and y of each of the
+        report's points, solved on ``kinematics``."""
+        result = Result(mech, kinematics=kinematics)
         result.units = dict(self.units)
-        result.values = dict(zip(self.names, table))
+        count = len(self.names)
+        result.values = dict(zip(self.names, table[:count]))
+        for i, (p, l_unit, _) in enumerate(self.points):
+            result.points[p] = (table[count + 2 * i], table[count + 2 * i + 1])
+            result.units[p] = l_unit
         return result
 
     def collect(self, mech, solver, kin) -> Result:
@@ -384,12 +430,7 @@ def _step(mech, name):
         unit, factor = _override(quantity.unit, base, order)
     a, b = quantity.a, quantity.b
     if quantity.kind in ("x", "y"):
-        real = quantity.kind == "x"
-
-        def coordinate(kin, out):
-            z = (kin.pos, kin.vel, kin.acc)[order].get(a, 0j)
-            _put(np.real(z) if real else np.imag(z), factor, kin, out)
-        return coordinate, unit
+        return CoordRow(a, quantity.kind == "x", order, factor), unit
     if base == "angle":
         return AngleRow(a, b, order, factor, quantity.signed and order == 0), unit
     signed = quantity.signed and order == 0
@@ -398,6 +439,31 @@ def _step(mech, name):
         value = _vector(quantity, kin, order)[0]
         _put(signed_angle(value) if signed else value, factor, kin, out)
     return vector, unit
+
+
+@dataclass(frozen=True)
+class CoordRow:
+    """A name that is the x (``real``) or y of point ``a`` (``order`` 0) or one of its rates
+    (1, 2), in display units (SI over ``factor``): ``row(kin, out)`` writes it."""
+
+    a: str
+    real: bool
+    order: int
+    factor: float
+
+    def __call__(self, kin, out):
+        z = (kin.pos, kin.vel, kin.acc)[self.order].get(self.a, 0j)
+        _put(np.real(z) if self.real else np.imag(z), self.factor, kin, out)
+
+
+def _probe(row):
+    """(kind, a, b, order, factor, signed) of a compiled solve's probe for a name's row
+    (:class:`AngleRow`, :class:`CoordRow`), None for another."""
+    if isinstance(row, AngleRow):
+        return ANGLE_PROBE, row.a, row.b, row.order, row.factor, row.signed
+    if isinstance(row, CoordRow):
+        return X_PROBE if row.real else Y_PROBE, row.a, None, row.order, row.factor, False
+    return None
 
 
 class _Row:

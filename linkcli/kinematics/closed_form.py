@@ -534,11 +534,11 @@ class DyadRates:
     """The 2x2 rate system Re(conj(G_i) P') = r_i of a dyad (or a coordinate driver),
     see the module's docstring, with what its constraints' kinds and fixed points decide
     worked out once: each right-hand side (:func:`_rhs_of`) and the gradients' constant
-    norms (:func:`_constant_norms`)."""
+    norms (:func:`constant_norms`)."""
 
     def __init__(self, index, group, fixed):
         self.index, self.group = index, group
-        self.norms = _constant_norms(group, fixed)
+        self.norms = constant_norms(group, fixed)
         self.rhs = tuple(_rhs_of(c, group.point, fixed) for c in group.constraints)
         self.grads = tuple(_grad_of(c, group.point, fixed) for c in group.constraints)
 
@@ -592,7 +592,7 @@ def _rhs_of(c, unknown, fixed):
     once; a line through fixed points, on which the unknown point runs, gives 0."""
     if isinstance(c, Dist):
         return _dist_rhs(c, fixed)
-    if _fixed_guide(c, unknown, fixed):
+    if fixed_guide(c, unknown, fixed):
         return _no_rhs
     if isinstance(c, Coord):
         j = c.coord
@@ -787,13 +787,13 @@ def _least(x):
     return x.min() if type(x) is np.ndarray else np.min(x)
 
 
-def _fixed_guide(c, unknown, fixed) -> bool:
+def fixed_guide(c, unknown, fixed) -> bool:
     """Whether ``c`` is a line through fixed points on which the unknown point runs: its
     gradient i (C - B) is a constant, and no known rate enters its right-hand side."""
     return isinstance(c, Line) and c.p == unknown and c.b in fixed and c.c in fixed
 
 
-def _constant_norms(group, fixed):
+def constant_norms(group, fixed):
     """|G_1| |G_2| of a group whose constraint gradients keep their lengths (see
     :func:`_grad`): 2 L for a distance of fixed length L (P on its circle), |C - B| for a
     line through fixed points when P is the unknown, 1 for a coordinate; None when either
@@ -805,7 +805,7 @@ def _constant_norms(group, fixed):
     for c in group.constraints:
         if isinstance(c, Dist) and c.length is not None:
             out *= 2.0 * abs(c.length)
-        elif _fixed_guide(c, group.point, fixed):
+        elif fixed_guide(c, group.point, fixed):
             out *= abs(fixed[c.c] - fixed[c.b])
         elif isinstance(c, Coord):
             pass
@@ -821,7 +821,7 @@ def _grad_of(c, unknown, fixed):
     if isinstance(c, Dist):
         p, a = c.p, c.a
         return lambda pos: 2.0 * (pos[p] - pos[a])
-    if _fixed_guide(c, unknown, fixed):
+    if fixed_guide(c, unknown, fixed):
         return _grad(c, fixed, unknown)
     if isinstance(c, Line):
         return lambda pos: _grad(c, pos, unknown)

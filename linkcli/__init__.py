@@ -41,4 +41,13 @@ def loads(text: str, k: int | None = None, name: str = "<text>"):
     return _loads(text, k, name)
 
 
-__all__ = ["load", "loads", "LinkcliError", "__version__"]
+def jit(on: bool = True) -> bool:
+    """Solve arrays of driver values by the compiled loop (``linkcli.kinematics.compiled``)
+    from now on in this process, as ``LINKCLI_JIT=1`` does, or by NumPy again (``on``
+    False); whether the loop is on: numba must be installed (``pip install linkcli[jit]``).
+    The first call compiles the loop (a few seconds, then cached on disk by numba)."""
+    from linkcli.kinematics.compiled import switch
+    return switch(on)
+
+
+__all__ = ["load", "loads", "jit", "LinkcliError", "__version__"]

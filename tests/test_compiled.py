@@ -153,18 +153,19 @@ def test_an_unassemblable_position_is_refused_with_numpys_error(loop):
     assert "cannot assemble" in str(error.value)
 
 
-def test_blocks_on_threads_give_the_whole_arrays_values(loop, monkeypatch):
-    """The loop solves BLOCK positions at a time on the threads: the values of one call."""
+def test_a_long_array_is_left_to_numpy(loop, monkeypatch):
+    """Above COMPILED_MOST driver values NumPy's whole-array loops are the faster: it
+    solves them, with the loop's values to rounding."""
     mech = linkcli.loads(FOURBAR).model
     names = ["beta", "gamma", "betadot", "gammaddot", "xB", "yBddot"]
     q = np.linspace(-170.0, 190.0, 53)
-    whole = quantities.evaluate(mech, q, names=names).values
-    monkeypatch.setattr(quantities, "BLOCK", 8)
-    monkeypatch.setattr(quantities, "WORKERS", 2)
-    blocks = quantities.evaluate(mech, q, names=names)
-    assert isinstance(blocks.kinematics, Later)
+    short = quantities.evaluate(mech, q, names=names)
+    assert isinstance(short.kinematics, Later)
+    monkeypatch.setattr(quantities, "COMPILED_MOST", 52)
+    long = quantities.evaluate(mech, q, names=names)
+    assert not isinstance(long.kinematics, Later)
     for name in names:
-        assert np.array_equal(blocks.values[name], whole[name]), name
+        assert _close(name, short.values[name], long.values[name], mech), name
 
 
 def test_a_name_the_loop_does_not_probe_leaves_numpy_to_it(loop):
@@ -285,3 +286,17 @@ def test_the_loops_points_are_the_solvers(path):
             assert np.allclose(got[0::2], expected.real, rtol=0, atol=1e-12 * scale), order
             assert np.allclose(got[1::2], expected.imag, rtol=0, atol=1e-12 * scale), order
     assert answered >= max(1, solvable // 2), (answered, solvable)
+
+
+def test_the_api_switches_the_loop_on_where_numba_is_installed(monkeypatch):
+    """linkcli.jit(): on where numba is installed (then arrays are solved by the loop), off
+    again with jit(False)."""
+    import importlib.util
+    monkeypatch.setitem(compiled._state, "kernel", None)
+    installed = importlib.util.find_spec("numba") is not None
+    assert linkcli.jit(True) is installed
+    result = linkcli.loads(FOURBAR).solve(np.linspace(0, 90, 10), names=["beta", "betadot"])
+    assert isinstance(result.kinematics, Later) is installed
+    assert linkcli.jit(False) is False
+    result = linkcli.loads(FOURBAR).solve(np.linspace(0, 90, 10), names=["beta", "betadot"])
+    assert not isinstance(result.kinematics, Later)

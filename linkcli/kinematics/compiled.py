@@ -84,10 +84,10 @@ class Program:
             factors[r] = factor
         return kinds, factors
 
-    def run(self, probes, q, qd, qdd, order, out, start=0, kernel=None) -> bool:
+    def run(self, probes, q, qd, qdd, order, out, kernel=None) -> bool:
         """Solve at driver values ``q`` (a 1-D array, SI) with rates ``qd``, ``qdd`` (numbers
         or arrays like ``q``) as far as ``order``, writing the probes into the rows of
-        ``out`` from column ``start``; False where the loop refuses (the values written are
+        ``out`` (probes x positions); False where the loop refuses (the values written are
         then not answers).  ``kernel``: the loop to run (default the compiled one; None
         when it is not on)."""
         kernel = kernel or compiled()
@@ -96,12 +96,10 @@ class Program:
         rates = [np.ascontiguousarray(np.atleast_1d(x), dtype=float) for x in (qd, qdd)]
         kinds, factors = probes
         if any(r.ndim != 1 or r.size not in (1, q.size) for r in rates) or \
-                not out.flags.c_contiguous or out.shape[0] != len(kinds) or \
-                not 0 <= start <= out.shape[1] - q.size:      # (the loop does not check)
+                not out.flags.c_contiguous or out.shape != (len(kinds), q.size):
             return False
         return kernel(np.ascontiguousarray(q, dtype=float), rates[0], rates[1], int(order),
-                      self.ops, self.par, self.x0, self.y0, kinds, factors, out,
-                      int(start)) == 0
+                      self.ops, self.par, self.x0, self.y0, kinds, factors, out) == 0
 
 
 def program_of(solver) -> Program | None:
@@ -226,7 +224,7 @@ def _compile():
         for name in HELPERS:            # what _run calls is compiled with it
             globals()[name] = jit(globals()[name])
         signature = i(f[::1], f[::1], f[::1], i, i[:, ::1], f[:, ::1], f[::1], f[::1],
-                      i[:, ::1], f[::1], f[:, ::1], i)
+                      i[:, ::1], f[::1], f[:, ::1])
         _state["compiled"] = numba.njit(signature, cache=True, nogil=True,
                                         error_model="numpy")(_run)
     except Exception:                   # noqa: BLE001 (ImportError, or numba's own errors)
@@ -238,7 +236,7 @@ def _compile():
 HELPERS = ("_place", "_velocity_rhs", "_accel_rhs")
 
 
-def _run(q, qd, qdd, order, ops, par, x0, y0, probes, factors, out, start):
+def _run(q, qd, qdd, order, ops, par, x0, y0, probes, factors, out):
     """Solve every position and write the probes (see the module); 0, or 1 where refused."""
     m = x0.shape[0]
     px, py = x0.copy(), y0.copy()
@@ -375,7 +373,7 @@ def _run(q, qd, qdd, order, ops, par, x0, y0, probes, factors, out, start):
                 ys = py if rate == 0 else (vy if rate == 1 else ay)
                 value = xs[a] if kind == X else ys[a]
             value = value / factors[k] + 0.0
-            out[k, start + i] = value
+            out[k, i] = value
             total += value
     return 0 if math.isfinite(total) else 1
 

@@ -35,6 +35,7 @@ sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, HERE)
 
 from speed import OUT, case, machine  # noqa: E402
+from linkcli.kinematics import compiled  # noqa: E402
 
 TWO_PI = 2 * math.pi
 EPS = np.finfo(float).eps
@@ -191,6 +192,8 @@ def measure(key, rounds):
     agree = max(float(np.max(np.abs(mine[n] - same[n]))) for n in mine)
     funcs = {"linkcli": lambda: c.solve(q), "straight": lambda: straight(q, c.qd, c.qdd),
              "hand": lambda: c.by_hand(q)}
+    if compiled.switch(True):           # numba installed: the compiled loop too
+        funcs["compiled"] = lambda: c.solve(q, jit=True)
     best = dict.fromkeys(funcs, math.inf)
     parts = np.full(4, math.inf)
     for _ in range(rounds):
@@ -212,19 +215,23 @@ def main(argv=None):
              "calls (phases: the best of each).", "",
              "| mechanism | linkcli | linkcli's algorithm and checks, straight-line | "
              "hand-written, no checks | linkcli's phases: positions, velocities, "
-             "accelerations, report values | straight - linkcli |",
-             "| --- | ---: | ---: | ---: | --- | ---: |"]
+             "accelerations, report values | straight - linkcli | linkcli, compiled loop |",
+             "| --- | ---: | ---: | ---: | --- | ---: | ---: |"]
     for key in STRAIGHT:
         us, parts, agree = measure(key, args.rounds)
         hand = us["hand"]
         lines.append(f"| {key} | {us['linkcli']:.1f} us ({us['linkcli'] / hand:.2f}x) | "
                      f"{us['straight']:.1f} us ({us['straight'] / hand:.2f}x) | {hand:.1f} us | "
-                     + ", ".join(f"{v:.1f}" for v in parts) + f" us | {agree:.1e} |")
+                     + ", ".join(f"{v:.1f}" for v in parts) + f" us | {agree:.1e} | "
+                     + (f"{us['compiled']:.1f} us ({us['compiled'] / hand:.2f}x) |"
+                        if "compiled" in us else "numba not installed |"))
         print(lines[-1], flush=True)
     lines += ["", "Straight-line: the same operations as linkcli for this mechanism, in one "
               "function (the values agree bit for bit); what it costs over the hand-written "
               "code is the general formulation and the checks, what linkcli costs over it is "
-              "the structure (groups, dictionaries, the plan)."]
+              "the structure (groups, dictionaries, the plan). The compiled loop "
+              "(kinematics.compiled, LINKCLI_JIT=1 with numba) does the same work position by "
+              "position in one compiled function."]
     text = "\n".join(lines)
     print("\n" + text)
     os.makedirs(OUT, exist_ok=True)

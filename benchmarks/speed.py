@@ -3,7 +3,8 @@
 For three mechanisms - the seed-004 four-bar, the seed-000 crank-slider and the
 six-bar of mechanisms/padova-2020-07.yaml (``speed_accuracy.py`` writes them in SI
 units) - it times positions, velocities and accelerations of every reported quantity
-at N = 360, 10^4, 10^6 and 10^7 driver positions:
+at N = 360, 4096 (the longest array the compiled loop takes), 10^4, 10^6 and 10^7
+driver positions:
 
 - linkcli: ``Linkage.solve(q, names=...)`` on the whole array (10^7: in blocks of
   16384 positions, the block size of ``linkcli sweep``, in a fresh process whose peak
@@ -11,7 +12,8 @@ at N = 360, 10^4, 10^6 and 10^7 driver positions:
 - hand-written NumPy of the same closed form (the same blocks at 10^7, with the same
   malloc settings, ``linkcli.answers.memory``), the speed to compare with;
 - linkcli's compiled loop (``kinematics.compiled``, the ``jit`` extra) when numba is
-  installed: the same call with the loop switched on;
+  installed: the same call with the loop switched on, at the sizes it takes (up to
+  ``COMPILED_MOST`` positions; NumPy solves longer arrays either way);
 - peers when importable: pylinkage's numba path (``Linkage.step_fast_with_kinematics``,
   joint coordinates and their two rates, no angles) for the four-bar and the
   crank-slider (it has no link of driven length for the six-bar), up to 10^6; its
@@ -49,11 +51,12 @@ sys.path.insert(0, os.path.dirname(HERE))
 sys.path.insert(0, HERE)
 
 import linkcli  # noqa: E402
+from linkcli.answers.quantities import COMPILED_MOST  # noqa: E402
 from linkcli.kinematics import compiled  # noqa: E402
 from speed_accuracy import CRANK_SLIDER, FOURBAR, SIXBAR, hand_fourbar  # noqa: E402
 
 OUT = os.path.join(HERE, "out")
-SIZES = (360, 10 ** 4, 10 ** 6, 10 ** 7)
+SIZES = (360, 4096, 10 ** 4, 10 ** 6, 10 ** 7)
 BLOCK = 16384           # positions per block at 10^7 (answers.sweep.BLOCK)
 ACCURACY_N = 10 ** 4
 PEERS = ("pylinkage",)
@@ -255,8 +258,7 @@ def child(key, method, n):
     from linkcli.answers.memory import keep_freed_memory
     c = case(key)
     keep_freed_memory()                     # both with the malloc settings linkcli's solves
-    jit = method == "compiled" and compiled.switch(True)    # of blocks take
-    func = c.by_hand if method == "hand" else lambda q: c.solve(q, jit=jit)
+    func = c.solve if method == "linkcli" else c.by_hand    # of blocks take
     func(c.grid(BLOCK))                     # warm: plans and solvers built
     before = high_water()
     seconds = in_blocks(func, c, n)
@@ -303,9 +305,9 @@ def accuracy(c):
 
 
 def compiled_against_numpy(c) -> float:
-    """The largest difference of the compiled loop's values from NumPy's on the accuracy
-    grid (angles in rad, others relative)."""
-    q = c.grid(ACCURACY_N)
+    """The largest difference of the compiled loop's values from NumPy's on the longest
+    grid the loop solves (angles in rad, others relative)."""
+    q = c.grid(COMPILED_MOST)
     mine, jit = c.solve(q), c.solve(q, jit=True)
     worst = 0.0
     for name in c.names:
@@ -370,14 +372,14 @@ def main(argv=None):
                 q = c.grid(n)
                 budget = 2.0 if n < 10 ** 6 else 1.0
                 funcs = {"linkcli": lambda: c.solve(q, jit=False), "hand": lambda: c.by_hand(q)}
-                if jit:
+                if jit and n <= COMPILED_MOST:
                     funcs["compiled"] = lambda: c.solve(q, jit=True)
                 if peer is not None:
                     funcs["pylinkage"] = lambda: peer[0](n)
                 times = median_times(list(funcs.values()), budget, args.repeat)
                 row.update({k: t / n for k, t in zip(funcs, times)})
             else:
-                for method in ("linkcli", "hand") + (("compiled",) if jit else ()):
+                for method in ("linkcli", "hand"):
                     run = subprocess.run([sys.executable, os.path.abspath(__file__), "--child",
                                           key, method, str(n)], capture_output=True, text=True,
                                          check=True)
@@ -442,14 +444,15 @@ def table(rows, peers) -> str:
         jit = f"{shown(r['compiled'], n)} ({r['compiled'] / r['hand']:.2f}x)" \
             if "compiled" in r else ""
         rss = f"{r['linkcli_rss']:.0f} / {r['hand_rss']:.0f} MB" if "linkcli_rss" in r else ""
-        if "compiled_rss" in r:
-            rss += f" (compiled {r['compiled_rss']:.0f} MB)"
         size = str(n) if n < 10 ** 4 else f"10^{round(math.log10(n))}"
         lines.append(f"| {r['mechanism']} | {size} | {mine} | {hand} | "
                      f"{r['linkcli'] / r['hand']:.2f}x | {jit} | {peer} | {rss} | "
                      f"{r['closure']:.1e} | "
                      f"{r['fd']:.1e} ({r['fd_hand']:.1e}) | {r['agree']:.1e} |")
-    lines += ["", "Peers: " + "; ".join(peers) + "."]
+    lines += ["", "Peers: " + "; ".join(peers) + ".", "",
+              f"linkcli compiled: the same call with the compiled loop switched on "
+              f"(kinematics.compiled), which takes arrays of up to {COMPILED_MOST} positions "
+              "(longer ones are solved by NumPy, the linkcli column)."]
     return "\n".join(lines)
 
 

@@ -46,8 +46,8 @@ def jit(on: bool = True) -> bool:
     from now on in this process, as ``LINKCLI_JIT=1`` does, or by NumPy again (``on``
     False); whether the loop is on: numba must be installed (``pip install linkcli[jit]``).
     The first call compiles the loop (a few seconds, then cached on disk by numba)."""
-    from linkcli.kinematics.compiled import switch
-    return switch(on)
+    from linkcli.api import jit as _jit
+    return _jit(on)
 
 
 __all__ = ["load", "loads", "jit", "LinkcliError", "__version__"]

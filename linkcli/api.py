@@ -16,6 +16,7 @@ from linkcli.answers.sheet import evaluate
 from linkcli.errors import LinkcliError
 from linkcli.input.document import build
 from linkcli.input.source import load_file, load_text
+from linkcli.kinematics.compiled import switch
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import Mechanism
 
@@ -47,6 +48,12 @@ class Linkage:
         (relative tolerance ``tol``) instead of the closed form of the groups.
         """
         return evaluate(self.model, q, qdot, qddot, names=names, method=method, tol=tol)
+
+
+def jit(on: bool = True) -> bool:
+    """Arrays of driver values solved by the compiled loop from now on (``on``), or by
+    NumPy; whether the loop is on (numba installed): see :func:`linkcli.jit`."""
+    return switch(on)
 
 
 def load(path: str, k: int | None = None) -> Linkage:

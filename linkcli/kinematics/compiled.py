@@ -137,9 +137,13 @@ def _row(group, fixed, solver):
     """(kind, A, B, extra, parameters) of one group (A, B, extra: point names; extra of a
     circle and a guide: 1 when the guide is the first constraint), None for another kind.
 
-    CRANK: A the pivot, (L); PLACE: A = K, B = M, extra N, (Re w, Im w); RRR: the centres,
-    (r1, r2, |G_1| |G_2|); CIRCLE_LINE: A the centre, (r, Re B, Im B, Re u, Im u, e,
-    Re G, Im G, |G_1| |G_2|) with u, e the guide's frame and G = i (C - B)."""
+    Parameters: CRANK (L), A the pivot; PLACE (Re w, Im w), A = K, B = M, extra N; RRR
+    (r1, r2, |G_1| |G_2|, driven 1, driven 2), A and B the centres; CIRCLE_LINE (r, Re B,
+    Im B, Re u, Im u, e, Re G, Im G, |G_1| |G_2|, driven, |B| + |e|), A the centre;
+    LINE_DRIVER (Re B, Im B, Re u, Im u, e, Re G, Im G, |G_1| |G_2|), extra 0 for x and 1
+    for y.  u, e: the guide's frame, G = i (C - B) its constant gradient; |G_1| |G_2| is 0
+    where it varies (a driven length: computed at each position); a length driven by q
+    is 1 in its 'driven' column."""
     kind = group.kind
     if kind == "driver-angle":
         pivot, length, reverse = group.constraints
@@ -233,11 +237,16 @@ def _compile():
 
 
 #: the functions :func:`_run` calls
-HELPERS = ("_place", "_velocity_rhs", "_accel_rhs")
+HELPERS = ("_place", "_velocity_rhs", "_accel_rhs", "_circles", "_circle_guide", "_slide",
+           "_angle", "_angle_rate")
 
 
 def _run(q, qd, qdd, order, ops, par, x0, y0, probes, factors, out):
-    """Solve every position and write the probes (see the module); 0, or 1 where refused."""
+    """Solve every position and write the probes (see the module); 0, or 1 where refused.
+
+    The points and their rates live in arrays indexed by the program; the helpers it calls
+    take and return numbers only: numba passes an array to a function with reference
+    counting, which made the same loop split into functions of arrays five times slower."""
     m = x0.shape[0]
     px, py = x0.copy(), y0.copy()
     vx, vy = np.zeros(m), np.zeros(m)
@@ -272,53 +281,31 @@ def _run(q, qd, qdd, order, ops, par, x0, y0, probes, factors, out):
                 continue
             if kind == RRR:
                 d1, d2 = par[g, 3] > 0, par[g, 4] > 0      # lengths driven by q
-                r1 = qi if d1 else par[g, 0]
-                r2 = qi if d2 else par[g, 1]
-                dx, dy = px[b] - px[a], py[b] - py[a]
-                d2sq = dx * dx + dy * dy
-                if not d2sq > 0:
-                    return 1
-                t = (r1 * r1 - r2 * r2 + d2sq) / (2.0 * d2sq)
-                across2, along2 = r1 * r1 / d2sq, t * t
-                e = across2 - along2
-                reach = (abs(px[a]) + abs(py[a]) + abs(px[b]) + abs(py[b])) / math.sqrt(d2sq)
-                if not e > 2.0 * TOGGLE * max(across2, along2) * (1.0 + reach):
-                    return 1
-                s = math.sqrt(e) if ops[g, 4] > 0 else -math.sqrt(e)
-                px[p], py[p] = px[a] + (dx * t - dy * s), py[a] + (dx * s + dy * t)
+                ok, px[p], py[p] = _circles(px[a], py[a], px[b], py[b],
+                                            qi if d1 else par[g, 0], qi if d2 else par[g, 1],
+                                            ops[g, 4])
                 x1, y1 = 2.0 * (px[p] - px[a]), 2.0 * (py[p] - py[a])
                 x2, y2 = 2.0 * (px[p] - px[b]), 2.0 * (py[p] - py[b])
                 c1, c2, first = a, b, False
             elif kind == LINE_DRIVER:
-                bx, by, ux, uy, e = par[g, 0], par[g, 1], par[g, 2], par[g, 3], par[g, 4]
-                sx, sy = bx - e * uy, by + e * ux           # B + i e u
-                along = ux if ops[g, 5] == 0 else uy
-                if not abs(along) >= ROUNDING:             # the guide along the coordinate
-                    return 1
-                t = (qi - sx) / along if ops[g, 5] == 0 else (qi - sy) / along
-                px[p], py[p] = sx + t * ux, sy + t * uy
+                ok, px[p], py[p] = _slide(ops[g, 5], qi, par[g, 0], par[g, 1], par[g, 2],
+                                          par[g, 3], par[g, 4])
                 x1, y1, norms = par[g, 5], par[g, 6], par[g, 7]
                 x2, y2 = (1.0, 0.0) if ops[g, 5] == 0 else (0.0, 1.0)
                 c1, c2, first, d1, d2 = p, p, True, False, False
             else:                               # CIRCLE_LINE
                 d1 = par[g, 9] > 0
-                r = qi if d1 else par[g, 0]
-                bx, by, ux, uy, e = par[g, 1], par[g, 2], par[g, 3], par[g, 4], par[g, 5]
-                relx = (px[a] - bx) * ux + (py[a] - by) * uy
-                rely = (py[a] - by) * ux - (px[a] - bx) * uy
-                dist = rely - e
-                disc = r * r - dist * dist
-                bound = r * r + r * (abs(px[a]) + abs(py[a]) + par[g, 10] + r)
-                if not disc > 2.0 * TOGGLE * bound:
-                    return 1
-                along = relx + math.sqrt(disc) if ops[g, 4] > 0 else relx - math.sqrt(disc)
-                px[p], py[p] = bx + (along * ux - e * uy), by + (along * uy + e * ux)
+                ok, px[p], py[p] = _circle_guide(px[a], py[a], qi if d1 else par[g, 0],
+                                                 ops[g, 4], par[g, 1], par[g, 2], par[g, 3],
+                                                 par[g, 4], par[g, 5], par[g, 10])
                 x1, y1 = 2.0 * (px[p] - px[a]), 2.0 * (py[p] - py[a])
                 x2, y2 = par[g, 6], par[g, 7]
                 first, d2 = ops[g, 5] == 1, False
                 if first:                       # PRR: the guide is the first constraint
                     x1, y1, x2, y2, d1, d2 = x2, y2, x1, y1, False, d1
                 c1, c2 = a, a
+            if not ok:
+                return 1
             if order < 1:
                 continue
             if kind == RRR:
@@ -348,30 +335,17 @@ def _run(q, qd, qdd, order, ops, par, x0, y0, probes, factors, out):
             ay[p] = r1 * (x2 * -inv) + r2 * (x1 * inv)
         for k in range(probes.shape[0]):
             kind, a, b, rate = probes[k, 0], probes[k, 1], probes[k, 2], probes[k, 3]
-            if kind == ANGLE:
-                zx, zy = px[b] - px[a], py[b] - py[a]
-                if rate == 0:
-                    value = math.atan2(zy, zx)
-                    if value <= 0:
-                        value += TWO_PI
-                    if value > TWO_PI - WRAP:
-                        value = 0.0
-                    if probes[k, 4] == 1 and value > math.pi:
-                        value -= TWO_PI
-                else:
-                    n2 = zx * zx + zy * zy
-                    if not n2 > 0:
-                        return 1
-                    wx, wy = vx[b] - vx[a], vy[b] - vy[a]
-                    value = (zx * wy - zy * wx) / n2                    # Im(z'/z)
-                    if rate == 2:
-                        sx, sy = ax[b] - ax[a], ay[b] - ay[a]
-                        value = (zx * sy - zy * sx) / n2 - 2.0 * ((zx * wx + zy * wy) / n2) \
-                            * value
-            else:
+            if kind != ANGLE:
                 xs = px if rate == 0 else (vx if rate == 1 else ax)
                 ys = py if rate == 0 else (vy if rate == 1 else ay)
                 value = xs[a] if kind == X else ys[a]
+            elif rate == 0:
+                value = _angle(px[b] - px[a], py[b] - py[a], probes[k, 4] == 1)
+            else:
+                ok, value = _angle_rate(px[b] - px[a], py[b] - py[a], vx[b] - vx[a],
+                                        vy[b] - vy[a], ax[b] - ax[a], ay[b] - ay[a], rate)
+                if not ok:
+                    return 1
             value = value / factors[k] + 0.0
             out[k, i] = value
             total += value
@@ -398,3 +372,71 @@ def _accel_rhs(gx, gy, x, y, dx, dy, driven, length, rate, accel):
         r = r + 2.0 * length * accel
     r = r - 2.0 * (dx * dx + dy * dy)
     return r + 2.0 * rate * rate if driven else r
+
+
+def _circles(ax, ay, bx, by, r1, r2, branch):
+    """(ok, P) with |P - A| = r1, |P - B| = r2: P = A + (B - A)(t + i branch s), as
+    ``dyads.circle_circle``; not ok where coincident centres or a discriminant within twice
+    the rounding bound of its toggle test leave P undecided."""
+    dx, dy = bx - ax, by - ay
+    d2 = dx * dx + dy * dy
+    if not d2 > 0:
+        return False, ax, ay
+    t = (r1 * r1 - r2 * r2 + d2) / (2.0 * d2)
+    across2, along2 = r1 * r1 / d2, t * t
+    e = across2 - along2
+    reach = (abs(ax) + abs(ay) + abs(bx) + abs(by)) / math.sqrt(d2)
+    if not e > 2.0 * TOGGLE * max(across2, along2) * (1.0 + reach):
+        return False, ax, ay
+    s = math.sqrt(e) if branch > 0 else -math.sqrt(e)
+    return True, ax + (dx * t - dy * s), ay + (dx * s + dy * t)
+
+
+def _circle_guide(ax, ay, r, branch, bx, by, ux, uy, e, reach):
+    """(ok, P) with |P - A| = r on the guide through B along u at offset e:
+    P = B + (t0 + branch sqrt(r^2 - d^2) + i e) u, as ``dyads.circle_line`` (``reach``:
+    |B| + |e|); not ok within twice the rounding bound of its toggle test."""
+    relx = (ax - bx) * ux + (ay - by) * uy
+    rely = (ay - by) * ux - (ax - bx) * uy
+    dist = rely - e
+    disc = r * r - dist * dist
+    if not disc > 2.0 * TOGGLE * (r * r + r * (abs(ax) + abs(ay) + reach + r)):
+        return False, ax, ay
+    along = relx + math.sqrt(disc) if branch > 0 else relx - math.sqrt(disc)
+    return True, bx + (along * ux - e * uy), by + (along * uy + e * ux)
+
+
+def _slide(axis, q, bx, by, ux, uy, e):
+    """(ok, P) on the guide through B along u at offset e with its x (``axis`` 0) or y = q;
+    not ok where the guide runs, within rounding, across that coordinate."""
+    sx, sy = bx - e * uy, by + e * ux               # B + i e u
+    along = ux if axis == 0 else uy
+    if not abs(along) >= ROUNDING:
+        return False, sx, sy
+    t = (q - sx) / along if axis == 0 else (q - sy) / along
+    return True, sx + t * ux, sy + t * uy
+
+
+def _angle(zx, zy, signed):
+    """The angle of z in [0, 2 pi), within 1e-12 of 2 pi being 0 (``signed``: in
+    (-pi, pi]), as ``answers.quantities.wrap_angle``."""
+    value = math.atan2(zy, zx)
+    if value <= 0:
+        value += TWO_PI
+    if value > TWO_PI - WRAP:
+        value = 0.0
+    if signed and value > math.pi:
+        value -= TWO_PI
+    return value
+
+
+def _angle_rate(zx, zy, wx, wy, sx, sy, rate):
+    """(ok, rate) of the angle of z with z' = (wx, wy), z'' = (sx, sy): Im(z'/z) (``rate``
+    1) or Im(z''/z) - 2 Re(z'/z) Im(z'/z) (2); not ok where z = 0."""
+    n2 = zx * zx + zy * zy
+    if not n2 > 0:
+        return False, 0.0
+    value = (zx * wy - zy * wx) / n2
+    if rate == 2:
+        value = (zx * sy - zy * sx) / n2 - 2.0 * ((zx * wx + zy * wy) / n2) * value
+    return True, value

@@ -3,8 +3,8 @@
 For three mechanisms - the seed-004 four-bar, the seed-000 crank-slider and the
 six-bar of mechanisms/padova-2020-07.yaml (``speed_accuracy.py`` writes them in SI
 units) - it times positions, velocities and accelerations of every reported quantity
-at N = 360, 4096 (the longest array the compiled loop takes), 10^4, 10^6 and 10^7
-driver positions:
+at N = 360, 2048 (``COMPILED_MOST``: the longest array the compiled loop takes), 10^4,
+10^6 and 10^7 driver positions:
 
 - linkcli: ``Linkage.solve(q, names=...)`` on the whole array (10^7: in blocks of
   16384 positions, the block size of ``linkcli sweep``, in a fresh process whose peak
@@ -56,7 +56,7 @@ from linkcli.kinematics import compiled  # noqa: E402
 from speed_accuracy import CRANK_SLIDER, FOURBAR, SIXBAR, hand_fourbar  # noqa: E402
 
 OUT = os.path.join(HERE, "out")
-SIZES = (360, 4096, 10 ** 4, 10 ** 6, 10 ** 7)
+SIZES = (360, COMPILED_MOST, 10 ** 4, 10 ** 6, 10 ** 7)
 BLOCK = 16384           # positions per block at 10^7 (answers.sweep.BLOCK)
 ACCURACY_N = 10 ** 4
 PEERS = ("pylinkage",)

@@ -37,9 +37,10 @@ TWO_PI = 2 * math.pi
 #: a long array of driver values is solved this many positions at a time (see Plan._in_blocks)
 BLOCK = 1 << 15
 #: the compiled loop (kinematics.compiled), where it is on, solves arrays of up to this many
-#: driver values: 2.5 times NumPy's speed at 360, the same at 4096; above, NumPy's loops
-#: over whole arrays (vectorised sin, cos, arctan2) are faster than its scalar ones
-COMPILED_MOST = 1 << 12
+#: driver values: 2.5-3 times NumPy's speed at 360, about the same at 2048 (benchmarks/
+#: speed.py); at 4096 NumPy's loops over whole arrays (vectorised sin, cos, arctan2) were
+#: 10-30 % faster than its scalar ones
+COMPILED_MOST = 1 << 11
 #: on at most this many threads (the processors this process may use, up to 4)
 WORKERS = min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity")
               else os.cpu_count() or 1)

@@ -40,7 +40,6 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -59,17 +58,16 @@ WRAP = 1e-12
 _state: dict = {}
 
 
-@dataclass(frozen=True)
 class Program:
-    """A solver's groups as numbers: ``ops`` rows (kind, P, A, B, branch, first) and
-    ``par`` rows of parameters, in the solving order; ``x0``, ``y0`` every point's
-    coordinates (the fixed ones' values); ``index`` point name -> column."""
+    """A solver's groups as numbers, in the solving order: ``ops`` rows (kind, P, A, B,
+    branch, extra) and ``par`` rows of parameters (see :func:`_row`); ``x0``, ``y0``
+    every point's coordinates (the fixed ones' values); ``index`` point name -> column.
+    (A plain class: a dataclass would add a millisecond to every command's start-up.)"""
 
-    ops: np.ndarray
-    par: np.ndarray
-    x0: np.ndarray
-    y0: np.ndarray
-    index: dict
+    __slots__ = ("ops", "par", "x0", "y0", "index")
+
+    def __init__(self, ops, par, x0, y0, index):
+        self.ops, self.par, self.x0, self.y0, self.index = ops, par, x0, y0, index
 
     def probes(self, rows):
         """(kinds, factors) of probes ``rows`` = [(kind, a, b, order, factor, signed)] with

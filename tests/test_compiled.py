@@ -24,7 +24,7 @@ from linkcli.model.mechanism import split_rate
 from test_plan import FILES, FOURBAR, _driven, _driver_values
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-PROBED = ("angle", "x", "y")
+PROBED = ("angle", "length", "x", "y")
 
 
 @pytest.fixture
@@ -35,7 +35,7 @@ def loop(monkeypatch):
 
 
 def _probed_names(mech):
-    """The report's names that are probes (angles, coordinates and their rates)."""
+    """The report's names that are probes (angles, lengths, coordinates, their rates)."""
     return [n for n in dict.fromkeys(report_names(mech))
             if mech.quantities[split_rate(n)[0]].kind in PROBED]
 
@@ -68,7 +68,7 @@ def test_the_loop_gives_numpys_values_or_refuses_where_numpy_does(path, monkeypa
     mech = _driven(path)
     names = _probed_names(mech)
     if not names:
-        pytest.skip("no angle or coordinate in the report")
+        pytest.skip("no angle, length or coordinate in the report")
     try:
         program = compiled.program_of(solver_for(mech))
     except LinkcliError:
@@ -169,11 +169,24 @@ def test_a_long_array_is_left_to_numpy(loop, monkeypatch):
 
 
 def test_a_name_the_loop_does_not_probe_leaves_numpy_to_it(loop):
-    """A length is not a probe: the plan has no program, and NumPy answers."""
-    mech = linkcli.loads(FOURBAR).model
-    assert plan_for(mech, ["beta", "AB"]).probes is None
-    result = quantities.evaluate(mech, np.linspace(0, 90, 5), names=["beta", "AB"])
+    """A speed is not a probe: the plan has no program, and NumPy answers."""
+    mech = linkcli.loads(FOURBAR.replace("AB: {length: [A0, B]}}",
+                                         "AB: {length: [A0, B]}, vB: {speed: B}}")).model
+    assert plan_for(mech, ["beta", "vB"]).probes is None
+    result = quantities.evaluate(mech, np.linspace(0, 90, 5), names=["beta", "vB"])
     assert not isinstance(result.kinematics, Later)
+
+
+def test_lengths_and_their_rates_are_probes(loop):
+    """|P_b - P_a| and its rates by the loop: NumPy's values to rounding."""
+    mech = linkcli.loads(FOURBAR).model
+    names = ["AB", "ABdot", "ABddot", "beta"]
+    q = np.linspace(-170.0, 190.0, 37)
+    got = quantities.evaluate(mech, q, names=names)
+    assert isinstance(got.kinematics, Later)
+    expected = quantities.collect(mech, solver_for(mech), got.kinematics, names)
+    for name in names:
+        assert _close(name, got.values[name], expected.values[name], mech), name
 
 
 def test_the_later_kinematics_are_the_solved_ones(loop):

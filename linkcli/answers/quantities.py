@@ -25,8 +25,8 @@ from linkcli.answers.memory import LONG, keep_freed_memory
 from linkcli.errors import InputError, LinkcliError, SolveError
 from linkcli.forces import motion
 from linkcli.kinematics.closed_form import own_coordinates, where_text
-from linkcli.kinematics.compiled import ANGLE as ANGLE_PROBE, X as X_PROBE, Y as Y_PROBE, \
-    compiled, program_of
+from linkcli.kinematics.compiled import ANGLE as ANGLE_PROBE, LENGTH as LENGTH_PROBE, \
+    X as X_PROBE, Y as Y_PROBE, compiled, program_of
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import FRAME, REPORT_SECTIONS, VIBRATION, Quantity, split_rate
 from linkcli.forces.statics import unknown_load
@@ -440,12 +440,25 @@ def _step(mech, name):
         return CoordRow(a, quantity.kind == "x", order, factor), unit
     if base == "angle":
         return AngleRow(a, b, order, factor, quantity.signed and order == 0), unit
-    signed = quantity.signed and order == 0
+    return LengthRow(a, b, order, factor), unit
 
-    def vector(kin, out):
-        value = _vector(quantity, kin, order)[0]
-        _put(signed_angle(value) if signed else value, factor, kin, out)
-    return vector, unit
+
+@dataclass(frozen=True)
+class LengthRow:
+    """A name that is the length of z = P_b - P_a (``order`` 0) or one of its rates (1, 2),
+    in display units (SI over ``factor``): ``row(kin, out)`` writes it (:func:`_vector`)."""
+
+    a: str
+    b: str
+    order: int
+    factor: float
+
+    def __call__(self, kin, out):
+        if self.order == 0:
+            value = np.abs(_rates(kin, self.a, self.b, rate=False)[0])
+        else:
+            value = _vector_rate(kin, self.a, self.b, self.order, False)
+        _put(value, self.factor, kin, out)
 
 
 @dataclass(frozen=True)
@@ -465,11 +478,13 @@ class CoordRow:
 
 def _probe(row):
     """(kind, a, b, order, factor, signed) of a compiled solve's probe for a name's row
-    (:class:`AngleRow`, :class:`CoordRow`), None for another."""
+    (:class:`AngleRow`, :class:`CoordRow`, :class:`LengthRow`), None for another."""
     if isinstance(row, AngleRow):
         return ANGLE_PROBE, row.a, row.b, row.order, row.factor, row.signed
     if isinstance(row, CoordRow):
         return X_PROBE if row.real else Y_PROBE, row.a, None, row.order, row.factor, False
+    if isinstance(row, LengthRow):
+        return LENGTH_PROBE, row.a, row.b, row.order, row.factor, False
     return None
 
 

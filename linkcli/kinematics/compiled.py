@@ -18,9 +18,10 @@ and runs them in one function, :func:`_run`, position by position:
 
 the rates of a dyad from its 2x2 system Re(conj(G_i) P') = r_i (``closed_form``'s module
 docstring), with G = 2 (P - A) for a circle and the constant G = i (C - B) (r = 0) for the
-fixed guide.  Probes: the angle of P_b - P_a in [0, 2 pi) (or (-pi, pi]) and its rates
-Im w, Im(z''/z) - 2 Re w Im w with w = z'/z; a point's x or y and their rates; each over
-its display factor.
+fixed guide.  Probes: the angle of z = P_b - P_a in [0, 2 pi) (or (-pi, pi]) and its
+rates Im w, Im(z''/z) - 2 Re w Im w with w = z'/z; its length |z| and rates |z| Re w,
+|z| (Re(z''/z - w^2) + (Re w)^2); a point's x or y and their rates; each over its
+display factor.
 
 The loop refuses, and the caller then solves with NumPy (which words the error or decides
 the close case), wherever a position is not clearly regular: a discriminant within twice
@@ -50,7 +51,7 @@ from linkcli.kinematics.topology import Dist
 #: group kinds of a program
 CRANK, RRR, CIRCLE_LINE, PLACE, LINE_DRIVER = 1, 2, 3, 4, 5
 #: probe kinds
-ANGLE, X, Y = 1, 2, 3
+ANGLE, X, Y, LENGTH = 1, 2, 3, 4
 TWO_PI = 2 * math.pi
 #: an angle within this of 2 pi is 0 (as ``answers.quantities.wrap_angle``)
 WRAP = 1e-12
@@ -236,7 +237,7 @@ def _compile():
 
 #: the functions :func:`_run` calls
 HELPERS = ("_place", "_velocity_rhs", "_accel_rhs", "_circles", "_circle_guide", "_slide",
-           "_angle", "_angle_rate")
+           "_angle", "_angle_rate", "_length_rate")
 
 
 def _run(q, qd, qdd, order, ops, par, x0, y0, probes, factors, out):
@@ -333,10 +334,15 @@ def _run(q, qd, qdd, order, ops, par, x0, y0, probes, factors, out):
             ay[p] = r1 * (x2 * -inv) + r2 * (x1 * inv)
         for k in range(probes.shape[0]):
             kind, a, b, rate = probes[k, 0], probes[k, 1], probes[k, 2], probes[k, 3]
-            if kind != ANGLE:
+            if kind == X or kind == Y:
                 xs = px if rate == 0 else (vx if rate == 1 else ax)
                 ys = py if rate == 0 else (vy if rate == 1 else ay)
                 value = xs[a] if kind == X else ys[a]
+            elif kind == LENGTH:
+                ok, value = _length_rate(px[b] - px[a], py[b] - py[a], vx[b] - vx[a],
+                                         vy[b] - vy[a], ax[b] - ax[a], ay[b] - ay[a], rate)
+                if not ok:
+                    return 1
             elif rate == 0:
                 value = _angle(px[b] - px[a], py[b] - py[a], probes[k, 4] == 1)
             else:
@@ -438,3 +444,19 @@ def _angle_rate(zx, zy, wx, wy, sx, sy, rate):
     if rate == 2:
         value = (zx * sy - zy * sx) / n2 - 2.0 * ((zx * wx + zy * wy) / n2) * value
     return True, value
+
+
+def _length_rate(zx, zy, wx, wy, sx, sy, rate):
+    """(ok, value) of the length of z with z' = (wx, wy), z'' = (sx, sy): |z| (``rate``
+    0), |z| Re w (1), |z| (Re(z''/z - w^2) + (Re w)^2) (2) with w = z'/z; not ok where a
+    rate of z = 0 is asked."""
+    r = math.hypot(zx, zy)
+    if rate == 0:
+        return True, r
+    n2 = zx * zx + zy * zy
+    if not n2 > 0:
+        return False, 0.0
+    wr, wi = (zx * wx + zy * wy) / n2, (zx * wy - zy * wx) / n2
+    if rate == 1:
+        return True, r * wr
+    return True, r * (((zx * sx + zy * sy) / n2 - (wr * wr - wi * wi)) + wr * wr)

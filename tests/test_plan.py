@@ -215,10 +215,13 @@ SCATTERED = FOURBAR.replace(
 
 
 @pytest.mark.parametrize("q", [80.0, np.linspace(-170.0, 190.0, 37)])
-def test_angles_in_any_order_units_and_signs_are_each_names_value(q):
+def test_angles_in_any_order_units_and_signs_are_each_names_value(q, monkeypatch):
     """The angles are evaluated stacked (quantities.Angles): names scattered among others,
     in several units (deg and an override in rad), signed and not, the same vector asked
-    twice and its reverse, give each name's own value, at one position and at many."""
+    twice and its reverse, give each name's own value, at one position and at many (by
+    NumPy, also where LINKCLI_JIT=1 would take the compiled loop)."""
+    from linkcli.kinematics import compiled
+    monkeypatch.setitem(compiled._state, "kernel", None)
     mech = linkcli.loads(SCATTERED).model
     names = ["thetaddot", "xB", "gamma", "backdot", "AB", "beta", "thetadot", "gammaddot",
              "theta", "back", "betadot", "yBddot", "betaddot", "gammadot", "backddot"]

@@ -202,7 +202,7 @@ class Plan:
         l_unit, l_factor = mech.units.display("length", 0)
         self.points = [(p, l_unit, l_factor) for p in mech.report.get("points", [])]
         #: the names as probes of a compiled solve (kinematics.compiled), None when one is
-        #: not an angle, a coordinate or one of their rates
+        #: not an angle, a length, a coordinate or one of their rates, or loads are asked
         self.probes = [_probe(fn) for fn, _ in self.steps]
         if None in self.probes or self.wants_loads:
             self.probes = None

@@ -356,10 +356,11 @@ class Plan:
 
 
 class Later:
-    """The kinematics of a blockwise evaluation (:meth:`Plan._in_blocks`), solved over the
-    whole array when first read: joining the blocks' costs more than solving again, and
-    most callers read only the values.  ``q`` is at hand; any other attribute is that of
-    the :class:`Kinematics` the whole-array path makes."""
+    """The kinematics of a blockwise or compiled evaluation (:meth:`Plan._in_blocks`,
+    :meth:`Plan._compiled`), solved over the whole array when first read: joining the
+    blocks' costs more than solving again, and most callers read only the values.  ``q``
+    is at hand; any other attribute is that of the :class:`Kinematics` the whole-array
+    path makes."""
 
     def __init__(self, solver, q, qd, qdd, order):
         self.q = q
@@ -947,7 +948,7 @@ def _instant_centre(quantity, kin, context):
     moving = kin.vel.get(point, 0j)
     relative = quantity.kind == "instant_centre" and quantity.b not in (None, FRAME)
     if relative:                     # (the b of an instant_centre_distance is its point)
-        other = Quantity("", "instant_centre", quantity.b, of=_kind_of(mech, quantity.b))
+        other = Quantity("", "instant_centre", quantity.b, of=quantity.c)
         anchor, turn = _spin_at(mech, *_spinning(other, context), kin)
         moving = moving - kin.vel.get(anchor, 0j) - 1j * turn * (kin.pos[point] -
                                                                   kin.pos[anchor])
@@ -994,18 +995,6 @@ def _spin_at(mech, body, disc, kin):
     if disc is None:
         return mech.bodies[body].points[0], motion.rotation(mech, body, kin.pos, kin.vel)[0]
     return disc.center, motion.disc_spin(mech, disc, kin.pos, kin.vel)[0]
-
-
-def _kind_of(mech, name) -> str:
-    """What a body's name names, as ``Quantity.of`` says it: a disc of ``dynamics: discs:``,
-    a rolling contact or cord (its disc), an actuator, or a link or slider."""
-    if mech.dynamics is not None and name in mech.dynamics.discs:
-        return "disc"
-    if name in mech.rolling:
-        return "rolling"
-    if name in mech.actuators:
-        return "actuator"
-    return "link"
 
 
 def _force(quantity, context):

@@ -333,7 +333,8 @@ class AnswersSection:
                 raise self.error(where, f"a body has no instant centre relative to itself, "
                                  f"got {arg!r}", hint="name two bodies, or the frame")
             return Quantity(name, kind, body, other, component=component,
-                            of=spinning[body][0])
+                            of=spinning[body][0],
+                            c=spinning[other][0] if other != FRAME else None)
         if kind in ("rotation", "instant_centre"):
             return Quantity(name, kind, self.body(arg, where, spinning, kind), component=component,
                             of=spinning[arg][0])

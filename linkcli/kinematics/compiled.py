@@ -156,12 +156,8 @@ def _row(group, fixed, solver):
         line, coord = group.constraints
         if coord.coord != 0 or not fixed_guide(line, group.point, fixed):
             return None
-        u, e = solver._frame(line)
-        b, c = complex(fixed[line.b]), complex(fixed[line.c])
-        g = 1j * (c - b)
         return LINE_DRIVER, group.point, group.point, int(coord.axis != "x"), \
-            [b.real, b.imag, complex(u).real, complex(u).imag, float(e), g.real, g.imag,
-             _norms(group, fixed)]
+            _guide(line, fixed, solver) + [_norms(group, fixed)]
     if kind not in ("RRR", "RRP", "PRR"):
         return None
     c1, c2 = group.constraints
@@ -174,12 +170,20 @@ def _row(group, fixed, solver):
     if not (isinstance(dist, Dist) and fixed_guide(line, group.point, fixed)) or \
             (dist.length is None and dist.coord != 0):
         return None
+    guide = _guide(line, fixed, solver)
+    bx, by, e = guide[0], guide[1], guide[4]
+    return CIRCLE_LINE, dist.a, dist.a, int(kind == "PRR"), \
+        [_length(dist)] + guide + [_norms(group, fixed), _driven(dist),
+                                   abs(bx) + abs(by) + abs(e)]
+
+
+def _guide(line, fixed, solver) -> list:
+    """[Re B, Im B, Re u, Im u, e, Re G, Im G] of a guide through fixed points B, C: its
+    frame (u, e) and constant gradient G = i (C - B)."""
     u, e = solver._frame(line)
     b, c = complex(fixed[line.b]), complex(fixed[line.c])
-    g = 1j * (c - b)                        # the guide's constant gradient
-    return CIRCLE_LINE, dist.a, dist.a, int(kind == "PRR"), \
-        [_length(dist), b.real, b.imag, complex(u).real, complex(u).imag, float(e), g.real,
-         g.imag, _norms(group, fixed), _driven(dist), abs(b.real) + abs(b.imag) + abs(e)]
+    g = 1j * (c - b)
+    return [b.real, b.imag, complex(u).real, complex(u).imag, float(e), g.real, g.imag]
 
 
 def _length(dist) -> float:

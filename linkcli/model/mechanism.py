@@ -170,7 +170,7 @@ class Quantity:
       ``dynamics: discs:``));
     - 'between': the angle from vector a->b to vector c->d;
     - 'instant_centre' (``component`` x or y) of body ``a`` (relative to body ``b`` when
-      it is given), and
+      it is given, ``c`` then saying what b is, as ``of`` does for a), and
       'instant_centre_distance' from it to point ``b``;
     - 'reaction': the force of the pin at point ``a`` on body ``b`` (``of``: its kind,
       or 'frame'), ``component`` x, y or magnitude; 'slider_force' of slider ``a``,

@@ -5,7 +5,7 @@ VENV   ?= .venv
 BIN     = $(VENV)/bin
 EXAMPLE ?= mechanisms/padova-2020-02.yaml
 
-.PHONY: run test check bench bench-full install clean
+.PHONY: run test check explore bench bench-full install clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -35,6 +35,11 @@ test: $(VENV)/.installed-test
 
 check: $(VENV)/.installed
 	$(BIN)/linkcli check mechanisms/
+
+## explore: the property tests of singular positions and the fuzzing with new random cases
+## (`make test` runs them derandomized: the same cases every time)
+explore: $(VENV)/.installed-test
+	LINKCLI_EXPLORE=1 $(BIN)/python -m pytest -n auto tests/test_toggles.py tests/test_fuzz.py
 
 ## bench: speed against hand-written NumPy and pylinkage, and of linkcli's compiled loop
 ## (numba and pylinkage installed if PyPI is reachable) at 360 ... 10^7 positions, with

@@ -78,20 +78,27 @@ class _Signalled(BaseException):
         self.signum = signum
 
 
+_RECEIVED: list = []      # the signals received while main() runs, in order
+
+
 def _raise_signal(signum, frame):
+    _RECEIVED.append(signum)
     raise _Signalled(signum)
 
 
 def _signal_behind(exc):
     """The _Signalled that ``exc`` was raised while handling (a writer's ``finally`` that
-    fails when a signal cut it short, e.g. a GIF closed before its first frame), if any."""
+    fails when a signal cut it short, e.g. a GIF closed before its first frame), or, when a
+    signal was received and ``exc`` does not show it (a library's compiled code that turned
+    the handler's exception into its own error, e.g. matplotlib's 'Invalid bounding box'),
+    that signal; None when no signal came."""
     seen = set()
     while exc is not None and id(exc) not in seen:
         if isinstance(exc, _Signalled):
             return exc
         seen.add(id(exc))
         exc = exc.__context__
-    return None
+    return _Signalled(_RECEIVED[-1]) if _RECEIVED else None
 
 
 @contextlib.contextmanager
@@ -99,6 +106,7 @@ def _signals():
     """SIGINT and SIGTERM raise _Signalled while main() runs (in the main thread, and
     unless the signal is ignored, as for a background job)."""
     saved = {}
+    _RECEIVED.clear()
     if threading.current_thread() is threading.main_thread():
         for signum in (signal.SIGINT, signal.SIGTERM):
             try:
@@ -683,6 +691,9 @@ def _run(args, prog_name, show_traceback) -> int:
         _flush_stdout()
         return status
     except LinkcliError as exc:
+        signalled = _signal_behind(exc)
+        if signalled is not None:       # the error came on the way out of a signal
+            raise signalled from None
         if show_traceback:
             raise
         _echo(exc, err=True, prefix=f"linkcli: {_style('error:', fg='red', bold=True)} ")

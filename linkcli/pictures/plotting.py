@@ -132,7 +132,11 @@ def _save(path: str, write, formats) -> None:
 
 @contextlib.contextmanager
 def _signals_held():
-    """SIGINT and SIGTERM are delivered after the block, not inside it (where possible)."""
+    """SIGINT and SIGTERM are delivered after the block, not inside it (where possible).
+
+    Around matplotlib's drawing too: its compiled code calls back into Python, and an
+    exception the command line's handler raises there can come out as an error of its
+    own (a ValueError 'Invalid bounding box'), the signal lost."""
     held = {signal.SIGINT, signal.SIGTERM}
     try:
         previous = signal.pthread_sigmask(signal.SIG_BLOCK, held)
@@ -158,7 +162,11 @@ def _remove(path):
 
 
 def _save_figure(fig, path) -> None:
-    _save(path, lambda tmp, ext: fig.savefig(tmp, format=ext), IMAGE_FORMATS)
+    def write(tmp, ext):
+        with _signals_held():
+            fig.savefig(tmp, format=ext)
+
+    _save(path, write, IMAGE_FORMATS)
 
 
 # --- plot ------------------------------------------------------------------------------------
@@ -356,24 +364,29 @@ def _write_gif(fig, path, fps, dpi, frames) -> None:
                 fp.write(b"".join(getdata(image, offset, duration=length,
                                           include_color_table=True)))
 
-        written = 0
-        for _ in frames:
-            buf = io.BytesIO()
-            fig.savefig(buf, format="rgba", dpi=dpi)
-            rgb = Image.frombuffer("RGBA", (width, height), buf.getbuffer(), "raw", "RGBA", 0,
-                                   1).convert("RGB")
-            box = (0, 0, width, height) if previous is None else \
-                ImageChops.difference(previous, rgb).getbbox()
-            if box is None:                       # the same picture: shown longer
-                pending[2] += duration
-                continue
-            if pending is not None:
-                flush(pending, written == 0)
-                fp.flush()
-                written += 1
-            part = rgb if box == (0, 0, width, height) else rgb.crop(box)
-            pending = [part.convert("P", palette=Image.Palette.ADAPTIVE), box[:2], duration]
-            previous = rgb
+        written, end = 0, object()
+        frames = iter(frames)
+        while True:
+            with _signals_held():                 # a signal is taken between frames
+                if next(frames, end) is end:
+                    break
+                buf = io.BytesIO()
+                fig.savefig(buf, format="rgba", dpi=dpi)
+                rgb = Image.frombuffer("RGBA", (width, height), buf.getbuffer(), "raw", "RGBA",
+                                       0, 1).convert("RGB")
+                box = (0, 0, width, height) if previous is None else \
+                    ImageChops.difference(previous, rgb).getbbox()
+                if box is None:                   # the same picture: shown longer
+                    pending[2] += duration
+                    continue
+                if pending is not None:
+                    flush(pending, written == 0)
+                    fp.flush()
+                    written += 1
+                part = rgb if box == (0, 0, width, height) else rgb.crop(box)
+                pending = [part.convert("P", palette=Image.Palette.ADAPTIVE), box[:2],
+                           duration]
+                previous = rgb
         if pending is not None:
             flush(pending, written == 0)
         fp.write(b";")

@@ -86,18 +86,13 @@ def _raise_signal(signum, frame):
     raise _Signalled(signum)
 
 
-def _signal_behind(exc):
-    """The _Signalled that ``exc`` was raised while handling (a writer's ``finally`` that
-    fails when a signal cut it short, e.g. a GIF closed before its first frame), or, when a
-    signal was received and ``exc`` does not show it (a library's compiled code that turned
-    the handler's exception into its own error, e.g. matplotlib's 'Invalid bounding box'),
-    that signal; None when no signal came."""
-    seen = set()
-    while exc is not None and id(exc) not in seen:
-        if isinstance(exc, _Signalled):
-            return exc
-        seen.add(id(exc))
-        exc = exc.__context__
+def _signal_received():
+    """The last signal received while main() runs, as a _Signalled to raise, or None.
+
+    An error raised after a signal came is the signal's doing, whatever it looks like: a
+    writer's ``finally`` that fails when the signal cut it short (a GIF closed before its
+    first frame), or a library's compiled code that turned the handler's exception into
+    its own error (matplotlib's 'Invalid bounding box')."""
     return _Signalled(_RECEIVED[-1]) if _RECEIVED else None
 
 
@@ -691,7 +686,7 @@ def _run(args, prog_name, show_traceback) -> int:
         _flush_stdout()
         return status
     except LinkcliError as exc:
-        signalled = _signal_behind(exc)
+        signalled = _signal_received()
         if signalled is not None:       # the error came on the way out of a signal
             raise signalled from None
         if show_traceback:
@@ -711,7 +706,7 @@ def _run(args, prog_name, show_traceback) -> int:
     except Exception as exc:  # a bug: say so briefly, traceback on request
         if isinstance(exc, OSError) and _writing_stdout(exc):   # click's own (--help)
             return _report_output_error(exc)
-        signalled = _signal_behind(exc)
+        signalled = _signal_received()
         if signalled is not None:       # a library's clean-up failed on the way out
             raise signalled from None
         if show_traceback:

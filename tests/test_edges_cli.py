@@ -445,24 +445,27 @@ def test_a_writer_that_fails_on_its_way_out_after_sigterm_still_exits_143(fourba
     assert capsys.readouterr().err == ""
 
 
-@pytest.mark.parametrize("error", [ValueError("Invalid bounding box"),
-                                   linkcli.errors.InputError("cannot write output file")])
-def test_a_library_that_swallows_the_signal_still_exits_143(error, fourbar, tmp_path,
-                                                           monkeypatch, capsys):
-    """Compiled code that calls back into Python can catch the handler's exception and
-    raise an error of its own, with no trace of the signal (matplotlib's drawing did):
-    the exit is still the signal's, with nothing printed."""
-    from linkcli.pictures import plotting
-
-    def swallowing(*args, **kwargs):
+def _swallowing(error):
+    """A stand-in for a picture command whose library catches the handler's exception
+    (compiled code calling back into Python; matplotlib's drawing did) and raises
+    ``error`` instead, with no trace of the signal."""
+    def command(*args, **kwargs):
         try:
             os.kill(os.getpid(), signal.SIGTERM)
             time.sleep(1)                       # the handler raises here ...
         except BaseException:
             pass                                # ... and the library drops it
         raise error
+    return command
 
-    monkeypatch.setattr(plotting, "animate", swallowing)
+
+@pytest.mark.parametrize("error", [ValueError("Invalid bounding box"),
+                                   linkcli.errors.InputError("cannot write output file")])
+def test_a_library_that_swallows_the_signal_still_exits_143(error, fourbar, tmp_path,
+                                                           monkeypatch, capsys):
+    """The exit is still the signal's, with nothing printed."""
+    from linkcli.pictures import plotting
+    monkeypatch.setattr(plotting, "animate", _swallowing(error))
     from linkcli.cli import main
     assert main(["animate", str(fourbar), "-o", str(tmp_path / "a.gif")]) == 143
     assert capsys.readouterr().err == ""
@@ -471,16 +474,7 @@ def test_a_library_that_swallows_the_signal_still_exits_143(error, fourbar, tmp_
 def test_a_signal_of_an_earlier_run_is_forgotten(fourbar, tmp_path, monkeypatch, capsys):
     """The next main() in the same process reports its own errors as usual."""
     from linkcli.pictures import plotting
-
-    def swallowing(*args, **kwargs):
-        try:
-            os.kill(os.getpid(), signal.SIGTERM)
-            time.sleep(1)
-        except BaseException:
-            pass
-        raise ValueError("Invalid bounding box")
-
-    monkeypatch.setattr(plotting, "animate", swallowing)
+    monkeypatch.setattr(plotting, "animate", _swallowing(ValueError("Invalid bounding box")))
     from linkcli.cli import main
     assert main(["animate", str(fourbar), "-o", str(tmp_path / "a.gif")]) == 143
     monkeypatch.undo()

@@ -8,7 +8,8 @@ on an exit code outside {0, 1, 2, 3}, on NaN or infinity in a successful JSON
 result, or when it runs longer than ``TIME_LIMIT`` seconds.  Hypothesis runs
 derandomized or with a fixed seed per file, so the cases are the same on every
 run; LINKCLI_EXPLORE=1 draws new random expressions and text on every run (``make
-explore``; the mutated files keep their seeds).  The number of cases is printed in the terminal summary.
+explore``; the mutated files keep their seeds).  The number of cases is printed in the
+terminal summary.
 """
 from __future__ import annotations
 
@@ -35,8 +36,8 @@ from mutations import (EXTRA, SHIPPED, TEMPLATE, data_of, expressions, mutated, 
 EXIT_CODES = {0, 1, 2, 3}
 TIME_LIMIT = 10.0          # seconds for one case: far above any real one (milliseconds)
 CASES_PER_FILE = max(50, 900 // max(1, len(SHIPPED)))
-FUZZ = settings(derandomize=not os.environ.get("LINKCLI_EXPLORE"), deadline=None, database=None, print_blob=True,
-                suppress_health_check=list(HealthCheck))
+FUZZ = settings(derandomize=not os.environ.get("LINKCLI_EXPLORE"), deadline=None,
+                database=None, print_blob=True, suppress_health_check=list(HealthCheck))
 
 COMMANDS = [
     ["solve", "-"],

@@ -138,19 +138,20 @@ def _exact_branches(r, b, c, d, q):
     d + c e^{i t4}; its derivative r e^{iq} + b w3 e^{i t3} = c w4 e^{i t4}, times e^{-i t4}
     (or e^{-i t3}), imaginary part."""
     import mpmath as mp
-    mp.mp.dps = 40
-    r, b, c, d, q = (mp.mpf(x) for x in (r, b, c, d, q))
-    B = r * mp.expj(q)
-    BD = d - B
-    dist = abs(BD)
-    gamma = mp.acos((b * b + dist * dist - c * c) / (2 * b * dist))
     branches = []
-    for side in (1, -1):
-        t3 = mp.arg(BD) + side * gamma
-        t4 = mp.arg(B + b * mp.expj(t3) - d)
-        w3 = r * mp.sin(t4 - q) / (b * mp.sin(t3 - t4))
-        w4 = r * mp.sin(q - t3) / (c * mp.sin(t4 - t3))
-        branches.append(tuple(float(x) for x in (t3 % (2 * mp.pi), t4 % (2 * mp.pi), w3, w4)))
+    with mp.workdps(40):
+        r, b, c, d, q = (mp.mpf(x) for x in (r, b, c, d, q))
+        B = r * mp.expj(q)
+        BD = d - B
+        dist = abs(BD)
+        gamma = mp.acos((b * b + dist * dist - c * c) / (2 * b * dist))
+        for side in (1, -1):
+            t3 = mp.arg(BD) + side * gamma
+            t4 = mp.arg(B + b * mp.expj(t3) - d)
+            w3 = r * mp.sin(t4 - q) / (b * mp.sin(t3 - t4))
+            w4 = r * mp.sin(q - t3) / (c * mp.sin(t4 - t3))
+            branches.append(tuple(float(x) for x in (t3 % (2 * mp.pi), t4 % (2 * mp.pi),
+                                                     w3, w4)))
     return branches
 
 
@@ -198,7 +199,6 @@ def test_crank_slider_rates_next_to_the_fold_against_40_digits(scale, r, l_ratio
     refused within rounding, else xC' right to 1e-3 of the 40-digit derivative of
     x_C = r cos q + sqrt(l^2 - (e - r sin q)^2) (rates grow as 1/sqrt of the distance)."""
     import mpmath as mp
-    mp.mp.dps = 40
     l = r * l_ratio
     e = e_ratio * r - l
     q0 = math.asin((e + l) / r)
@@ -216,7 +216,8 @@ def test_crank_slider_rates_next_to_the_fold_against_40_digits(scale, r, l_ratio
                 got = float(linkcli.loads(text).solve().values["xCdot"]) / scale
             except (SingularError, AssemblyError):
                 continue
-            exact = float(mp.diff(x_c, mp.mpf(q)))
+            with mp.workdps(40):
+                exact = float(mp.diff(x_c, mp.mpf(q)))
             assert abs(got - exact) < 1e-3 * abs(exact), (eps, got, exact)
             answered += 1
     assert answered >= 3, "the side that assembles is answered from 1e-10 rad on"

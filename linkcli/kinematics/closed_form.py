@@ -588,8 +588,10 @@ class DyadRates:
 
 
 def _rhs_of(c, unknown, fixed):
-    """rhs(G, kin, d, qrate, vel): :func:`_rhs` of constraint ``c`` with its kind decided
-    once; a line through fixed points, on which the unknown point runs, gives 0."""
+    """rhs(G, kin, d, qrate, vel): the right-hand side of constraint ``c`` in the rate
+    system, its kind decided once: a distance's (:func:`_dist_rhs`), a coordinate's rate,
+    a moving line's (:func:`_line_rhs`); a line through fixed points, on which the unknown
+    point runs, gives 0."""
     if isinstance(c, Dist):
         return _dist_rhs(c, fixed)
     if fixed_guide(c, unknown, fixed):
@@ -599,7 +601,7 @@ def _rhs_of(c, unknown, fixed):
         return lambda g, kin, d, qrate, vel: qrate[j]
 
     def rhs(g, kin, d, qrate, vel):
-        return _rhs(c, g, kin.pos, d, kin.coords, qrate, vel, kin.rates)
+        return _line_rhs(c, kin.pos, d, vel)
     return rhs
 
 
@@ -608,7 +610,7 @@ def _no_rhs(g, kin, d, qrate, vel):
 
 
 def _dist_rhs(c, fixed):
-    """The right-hand side (see :func:`_rhs`) of g = |P - A|^2 - L^2 with G = 2 (P - A),
+    """The right-hand side (as :func:`_line_rhs`) of g = |P - A|^2 - L^2 with G = 2 (P - A),
     P unknown: r = Re(conj(G) A') + 2 L L' for velocities, and for accelerations
     r = Re(conj(G) A'') + 2 L L'' - 2 |P' - A'|^2 + 2 L'^2; the terms of a fixed A or a
     fixed L are left out."""
@@ -846,27 +848,24 @@ def _delta(d, x, y):
     return -d[y] if y in d else None
 
 
-def _rhs(c, grad, pos, d, q, qrate, vel, qd):
-    """Right-hand side r of Re(conj(G) V) = r for a line or a coordinate (a distance's is
-    :func:`_dist_rhs`).
+def _line_rhs(c, pos, d, vel):
+    """Right-hand side r of Re(conj(G) V) = r for a line g = cross(C - B, P - B) - value
+    whose points may move (a distance's is :func:`_dist_rhs`, a coordinate's its rate).
 
     r = -(part of dg/dt linear in the known rates ``d``) for velocities; for
     accelerations (``vel`` given) also minus the quadratic part 2 B(V, V).
-    ``grad`` is the constraint's gradient G with respect to the unknown point.
     """
-    if isinstance(c, Line):           # g = cross(C - B, P - B) - value
-        r = 0.0
-        dcb, dpb = _delta(d, c.c, c.b), _delta(d, c.p, c.b)
-        if dcb is not None:
-            r = r - cross(dcb + 0j, pos[c.p] - pos[c.b])
-        if dpb is not None:
-            r = r - cross(pos[c.c] - pos[c.b] + 0j, dpb)
-        if vel is not None:
-            vcb, vpb = _delta(vel, c.c, c.b), _delta(vel, c.p, c.b)
-            if vcb is not None and vpb is not None:
-                r = r - 2.0 * cross(vcb + 0j, vpb)
-        return r
-    return qrate[c.coord]             # g = x (or y) of P - q
+    r = 0.0
+    dcb, dpb = _delta(d, c.c, c.b), _delta(d, c.p, c.b)
+    if dcb is not None:
+        r = r - cross(dcb + 0j, pos[c.p] - pos[c.b])
+    if dpb is not None:
+        r = r - cross(pos[c.c] - pos[c.b] + 0j, dpb)
+    if vel is not None:
+        vcb, vpb = _delta(vel, c.c, c.b), _delta(vel, c.p, c.b)
+        if vcb is not None and vpb is not None:
+            r = r - 2.0 * cross(vcb + 0j, vpb)
+    return r
 
 
 def _combine(r1, k1, r2, k2):

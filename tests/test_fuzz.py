@@ -177,16 +177,19 @@ def test_hostile_documents_are_refused_after_bounded_work_and_memory(name, text,
     read past the limit would exceed them."""
     from linkcli.input import source
     work = {"events": 0, "values": 0}
-    get_event, build = source._BoundedLoader.get_event, source._Builder.build
+    build = source._Builder.build
 
-    def counted_event(self):
-        work["events"] += 1
-        return get_event(self)
+    def counting(get_event):
+        def counted_event(self):
+            work["events"] += 1
+            return get_event(self)
+        return counted_event
 
     def counted_build(self, *args):
         work["values"] += 1
         return build(self, *args)
-    monkeypatch.setattr(source._BoundedLoader, "get_event", counted_event)
+    for loader in {source._BoundedLoader, source._CheckingLoader}:   # libyaml's, Python's
+        monkeypatch.setattr(loader, "get_event", counting(loader.get_event))
     monkeypatch.setattr(source._Builder, "build", counted_build)
     code, _, err = run(["solve", "-"], text)
     assert code == 2 and words in err, err

@@ -141,26 +141,33 @@ class _Refused(Exception):
         self.line = mark.line + 1 if mark is not None else None
 
 
+from yaml.parser import Parser as _PyParser   # noqa: E402
+from yaml.reader import Reader                  # noqa: E402
+from yaml.scanner import Scanner                # noqa: E402
+
 try:   # libyaml's parser when available (fast), PyYAML's own otherwise
     from yaml._yaml import CParser as _Parser
 except ImportError:  # pragma: no cover - PyYAML without libyaml
-    from yaml.parser import Parser as _Parser
-    from yaml.reader import Reader
-    from yaml.scanner import Scanner
-
-    class _Parser(Reader, Scanner, _Parser):   # noqa: F811
-        def __init__(self, stream):
-            Reader.__init__(self, stream)
-            Scanner.__init__(self)
-            yaml.parser.Parser.__init__(self)
+    _Parser = None
 
 
-class _BoundedLoader(_Parser, yaml.composer.Composer, yaml.resolver.Resolver):
+class _PythonParser(Reader, Scanner, _PyParser):
+    """PyYAML's own reader, scanner and parser, in Python.  Its look-ahead is bounded
+    (a simple key spans at most 1024 characters), so the composer's depth bound refuses a
+    deep document before the scanner goes further; it words every syntax error the same
+    way whichever libyaml (and its own limits) is installed."""
+
+    def __init__(self, stream):
+        Reader.__init__(self, stream)
+        Scanner.__init__(self)
+        _PyParser.__init__(self)
+
+
+class _Bounded(yaml.composer.Composer, yaml.resolver.Resolver):
     """A safe composer (YAML events to nodes, no objects constructed) that
     refuses aliases and counts nodes and depth as it goes."""
 
-    def __init__(self, stream):
-        _Parser.__init__(self, stream)
+    def _bound(self):
         yaml.composer.Composer.__init__(self)
         yaml.resolver.Resolver.__init__(self)
         self.node_count = 0
@@ -188,8 +195,36 @@ class _BoundedLoader(_Parser, yaml.composer.Composer, yaml.resolver.Resolver):
             self.depth -= 1
 
 
+class _CheckingLoader(_Bounded, _PythonParser):
+    """The bounded composer over PyYAML's Python parser: the wording of every error."""
+
+    def __init__(self, stream):
+        _PythonParser.__init__(self, stream)
+        self._bound()
+
+
+if _Parser is not None:
+    class _BoundedLoader(_Bounded, _Parser):
+        """The bounded composer over libyaml's parser: the fast path of a good file."""
+
+        def __init__(self, stream):
+            _Parser.__init__(self, stream)
+            self._bound()
+else:  # pragma: no cover - PyYAML without libyaml
+    _BoundedLoader = _CheckingLoader
+
+
 def _compose(text: str):
-    return _BoundedLoader(text).get_single_node()
+    """The document's node tree.  A file that libyaml refuses is read again by the
+    Python parser, so that what the user is told (the error, its line, or the depth and
+    size bounds, which libyaml's own limits may pre-empt) does not depend on the libyaml
+    build installed; a file it accepts is read once, fast."""
+    try:
+        return _BoundedLoader(text).get_single_node()
+    except yaml.YAMLError:
+        if _BoundedLoader is _CheckingLoader:   # pragma: no cover - no libyaml
+            raise
+    return _CheckingLoader(text).get_single_node()
 
 
 class _Builder:

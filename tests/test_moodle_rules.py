@@ -18,9 +18,7 @@ figure, so that drawing does not cost the suite), and on the cases that broke it
 """
 from __future__ import annotations
 
-import glob
 import os
-import re
 import sys
 import urllib.parse
 import xml.etree.ElementTree as ET
@@ -29,62 +27,23 @@ import pytest
 
 sys.path.insert(0, os.path.dirname(__file__))
 
-from cloze_grammar import parse as parse_cloze  # noqa: E402
+from quizzes import SHIPPED, boxes as _boxes, digit as _digit, export as _export  # noqa: E402
+from quizzes import names as _names, questions as _cloze, shipped  # noqa: E402
 from linkcli.answers.check import check_file  # noqa: E402
 from linkcli.answers.quantities import angle_period  # noqa: E402
 from linkcli.errors import InputError  # noqa: E402
 from linkcli.exports import moodle  # noqa: E402
 from linkcli.input.document import build  # noqa: E402
 from linkcli.input.source import load_file, load_text  # noqa: E402
-from linkcli.model.mechanism import REPORT_SECTIONS  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SHIPPED = sorted(glob.glob(os.path.join(ROOT, "mechanisms", "*.yaml")))
-METHOD = {"triad-class3.yaml": "newton"}      # a class-III group: the closed form refuses it
 MARK_LIMIT = 100_000                          # Moodle's numeric field of a question's mark
 PHP_DIGITS = 14                               # PHP's float precision
-
-
-def _stand_in(mech) -> bytes:
-    return b"\x89PNG\r\n\x1a\n"
-
-
-def _export(path, **options):
-    doc = load_file(path)
-    ks = list(range(10)) if doc.data.get("k") is not None else None
-    method = METHOD.get(os.path.basename(path))
-    if method:
-        options["method"] = method
-    return moodle.export(doc, ks, figure=_stand_in, **options)
 
 
 @pytest.fixture(scope="module")
 def quizzes():
     """{path: XML root} of every shipped file's quiz (every digit for a file with k)."""
-    out = {}
-    for path in SHIPPED:
-        try:
-            out[path] = ET.fromstring(_export(path))
-        except Exception as exc:     # noqa: BLE001 - a failed export is a broken rule
-            out[path] = exc
-    return out
-
-
-def _cloze(root):
-    return [q for q in root if q.get("type") == "cloze"]
-
-
-def _digit(question):
-    found = re.search(r"-k(\d)$", question.find("idnumber").text)
-    return int(found.group(1)) if found else None
-
-
-def _boxes(question):
-    return parse_cloze(question.find("questiontext/text").text)
-
-
-def _names(mech):
-    return [n for s in REPORT_SECTIONS for n in mech.report.get(s) or []]
+    return shipped()
 
 
 def _raw(answer):
@@ -120,8 +79,7 @@ def _each(quizzes):
             yield path, q, _boxes(q)
 
 
-# --- marks --------------------------------------------------------------------------------------
-@pytest.mark.xfail(strict=True, reason="the mark is defaultgrade, not the sum of the weights")
+# --- marks -----------------------------------------------------------------------------------
 def test_the_mark_is_the_sum_of_the_weights_and_fits_moodle(quizzes):
     wrong = []
     for path, q, boxes in _each(quizzes):
@@ -149,7 +107,6 @@ quiz: {points: {position: 33.33, velocity: 33.33, statics: 33.34}}
 """
 
 
-@pytest.mark.xfail(strict=True, reason="weights overflow Moodle's mark")
 def test_points_with_two_decimals_give_a_mark_moodle_can_store():
     """The issue's 33.33 / 33.33 / 33.34 made box weights 13332 / 9999 / 26672: a mark of
     over 100 000, which stopped Moodle's import with a numeric field overflow."""
@@ -164,7 +121,7 @@ def test_points_with_two_decimals_give_a_mark_moodle_can_store():
     assert [s / total for s in shares] == pytest.approx([1 / 3] * 3, abs=0.001)
 
 
-# --- numbers Moodle stores exactly ------------------------------------------------------------
+# --- numbers Moodle stores exactly -----------------------------------------------------------
 def _digits_broken(root):
     bad = []
     for q in _cloze(root):
@@ -182,7 +139,6 @@ def test_every_value_and_tolerance_survives_fourteen_digits(quizzes):
     assert not bad, bad[:10]
 
 
-@pytest.mark.xfail(strict=True, reason="--decimals 12 writes 15 digits")
 def test_the_largest_decimals_are_stored_exactly_or_refused():
     """--decimals 12 wrote 15 or more significant digits, and Moodle graded the exact value
     wrong; now every value is kept or the export says which value needs fewer decimals."""
@@ -198,8 +154,7 @@ def test_the_largest_decimals_are_stored_exactly_or_refused():
     assert not bad, bad[:10]
 
 
-# --- the figure's link ----------------------------------------------------------------------------
-@pytest.mark.xfail(strict=True, reason="the link is not URL-encoded")
+# --- the figure's link -----------------------------------------------------------------------
 def test_figure_links_decode_to_the_stored_file_name(quizzes, tmp_path):
     hostile = tmp_path / "esame 26 gennaio #1 è?%20.yaml"
     hostile.write_text(open(SHIPPED[0], encoding="utf-8").read(), encoding="utf-8")
@@ -219,8 +174,7 @@ def test_figure_links_decode_to_the_stored_file_name(quizzes, tmp_path):
     assert not bad, bad
 
 
-# --- angles -----------------------------------------------------------------------------------------
-@pytest.mark.xfail(strict=True, reason="one answer per angle box")
+# --- angles ----------------------------------------------------------------------------------
 def test_every_angle_box_accepts_both_equivalent_angles(quizzes):
     bad, count = [], 0
     for path, q, boxes in _each(quizzes):
@@ -249,8 +203,7 @@ def _unit_of(question, box):
     return cell.replace("</td>", "").replace("<td>", "").strip()
 
 
-# --- printed keys ---------------------------------------------------------------------------------
-@pytest.mark.xfail(strict=True, reason="boxes ignore the keys' tolerances")
+# --- printed keys ----------------------------------------------------------------------------
 def test_every_printed_key_check_accepts_scores_full_marks(quizzes):
     bad, count = [], 0
     for path, root in quizzes.items():

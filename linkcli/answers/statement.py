@@ -828,7 +828,9 @@ _DESCRIBE = {
     "x": _geometry("x of {a}", "x di {a}"),
     "y": _geometry("y of {a}", "y di {a}"),
     "q": _geometry("the driver q", "il movente q"),
-    "load": _geometry("load {a} {component}", "carico {a} {component}"),
+    "load": lambda w, q: _geometry(
+        "{component} component of load {a}" if q.component else "load {a}",
+        "componente {component} del carico {a}" if q.component else "carico {a}")(w, q),
     "speed": _geometry("speed of {a}", "velocità di {a}"),
     "acceleration": _geometry("acceleration of {a}", "accelerazione di {a}"),
     "tangential_acceleration": _geometry("tangential acceleration of {a}",

@@ -179,9 +179,11 @@ def _driver(ax, scene, w):
     if d.kind == "length":
         a, b = scene.p[d.a], scene.p[d.b]
         u = (b - a) / abs(b - a)
-        spot = _side(scene, a, b, -0.08)       # the unknown's label is on the other side
+        spot = _side(scene, a, b, -0.05)       # the unknown's label is on the other side
+        off = spot - (a + b) / 2
+        ha = "center" if abs(off.real) < 0.3 * abs(off) else "left" if off.real > 0 else "right"
         _text(ax, spot, value + (f", {rate}" if rate else ""), color=DRIVER, fontsize=9,
-              ha="center", va="center", zorder=11)
+              ha=ha, va="center", zorder=11)
         if d.rate:
             sense = u if d.rate > 0 else -u
             start = b + 0.05 * scene.size * 1j * u

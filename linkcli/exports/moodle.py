@@ -70,13 +70,15 @@ WIDEN = 0.01                    # ... which must stay within 1 % of the toleranc
 WORDS = {
     "en": {"data": "Data", "figure": "Figure",
            "separator": "Write each result with a decimal point (12.5), without a thousands "
-                        "separator, to {places} decimal places.",
+                        "separator, to {places}.",
+           "places": ("no decimal places", "one decimal place", "{n} decimal places"),
            "angles": "An angle may be given in [0, {turn}) or as the equivalent angle one turn "
                      "less ({example}).",
            "or": "or"},
     "it": {"data": "Dati", "figure": "Figura",
            "separator": "Scrivere ogni risultato con la virgola decimale (12,5), senza "
-                        "separatore delle migliaia, con {places} cifre decimali.",
+                        "separatore delle migliaia, con {places}.",
+           "places": ("nessuna cifra decimale", "una cifra decimale", "{n} cifre decimali"),
            "angles": "Un angolo si può dare in [0, {turn}) o come l'angolo equivalente di un "
                      "giro in meno ({example}).",
            "or": "o"},
@@ -122,12 +124,15 @@ def weights(mech) -> tuple[dict, int]:
                 abs(Fraction(chosen[s] * counts[s], mark) - shares[s]) <= SHARE
                 for s in sections):
             return chosen, mark
+    small = min(sections, key=lambda s: shares[s] / counts[s])
     shown = ", ".join(f"{s}: {points[s]:g}" for s in sections)
     raise InputError(f"quiz.points ({shown}) cannot be kept by whole weights of the answer "
                      f"boxes with a mark of at most {MAX_MARK}, each section's share within "
                      f"{float(SHARE) * 100:g} %", file=mech.file, key="quiz.points",
-                     hint="round the points: a section's share of the total must be worth at "
-                     "least one point per box")
+                     hint=f"the {counts[small]} boxes of {small} share "
+                     f"{float(shares[small]) * 100:.2g} % of the points: give each box at "
+                     f"least 1/{MAX_MARK} of them, or leave quiz.points out for one point per "
+                     "box")
 
 
 def _mark(chosen, counts) -> int:
@@ -254,7 +259,8 @@ def instructions(mech, result, places, lang) -> str:
     """How to write the answers: the decimal separator, the decimals, and for angles the
     two equivalent values that score."""
     words = WORDS[lang]
-    lines = [words["separator"].format(places=places)]
+    counted = words["places"][min(places, 2)].format(n=places)
+    lines = [words["separator"].format(places=counted)]
     units = {result.units[n] for n in report_names(mech)
              if angle_period(mech, n, result.units[n]) is not None}
     if units:

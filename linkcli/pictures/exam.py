@@ -163,17 +163,9 @@ def _driver(ax, scene, w):
     rate_unit, rate_f = mech.units.display(d.base, 1)
     rate = f"q' = {w.num(abs(d.rate) / rate_f)} {rate_unit}" if d.rate else ""
     if d.kind == "angle":
-        pivot, tip = (d.a, d.b) if d.a in mech.fixed else (d.b, d.a)
-        centre, end = scene.p[pivot], scene.p[tip]
-        phi = math.degrees(cmath.phase(end - centre)) % 360.0
-        radius = min(0.1 * scene.size, 0.6 * abs(end - centre))
-        _line(ax, [centre, centre + 1.4 * radius], color=DRIVER, lw=0.8, ls=":", zorder=8)
-        _arc(ax, centre, radius, 0, phi, color=DRIVER, lw=1.0, zorder=8)
-        half = cmath.rect(radius + 0.05 * scene.size, math.radians(phi / 2))
-        _text(ax, centre + half, f"q = {w.angle(d.value)}", color=DRIVER, fontsize=9, ha="center",
-              va="center", zorder=11)
+        _angle_mark(ax, scene, d, f"q = {w.angle(d.value)}", fontsize=9)
         if d.rate:
-            _spin(ax, scene, end, d.rate > 0, rate)
+            _spin(ax, scene, scene.p[d.b], d.rate > 0, rate)
         return
     value = f"q = {w.length(d.value)}"
     if d.kind == "length":
@@ -200,6 +192,18 @@ def _driver(ax, scene, w):
           color=DRIVER, fontsize=9, ha="center", va="center", zorder=11)
 
 
+def _angle_mark(ax, scene, coordinate, text, **style):
+    """The angle of the vector a -> b from +x, as an arc at a from a dotted +x line, and
+    ``text`` beside the arc's middle (a negative angle turns clockwise)."""
+    tail, head = scene.p[coordinate.a], scene.p[coordinate.b]
+    phi = math.fmod(math.degrees(coordinate.value), 360.0)
+    radius = min(0.08 * scene.size, 0.6 * abs(head - tail))
+    _line(ax, [tail, tail + 1.4 * radius], color=DRIVER, lw=0.8, ls=":", zorder=8)
+    _arc(ax, tail, radius, min(0.0, phi), max(0.0, phi), color=DRIVER, lw=1.0, zorder=8)
+    middle = cmath.rect(radius + 0.05 * scene.size, math.radians(phi / 2))
+    _text(ax, tail + middle, text, color=DRIVER, ha="center", va="center", zorder=11, **style)
+
+
 def _spin(ax, scene, at, counter, text):
     """A curved arrow about ``at`` in the sense of the rate, with ``text``."""
     r = 0.05 * scene.size
@@ -221,15 +225,7 @@ def _coordinates(ax, scene):
     mech = scene.mech
     for c in mech.coordinates:
         if c.kind == "angle":
-            pivot, tip = c.a, c.b
-            centre, end = scene.p[pivot], scene.p[tip]
-            r = 0.07 * scene.size
-            phi = math.degrees(cmath.phase(end - centre))
-            _line(ax, [centre, centre + 1.4 * r], color=DRIVER, lw=0.8, ls=":", zorder=8)
-            _arc(ax, centre, r, min(0, phi), max(0, phi), color=DRIVER, lw=1.0, zorder=8)
-            mid = cmath.rect(r + 0.04 * scene.size, math.radians(phi / 2))
-            _text(ax, centre + mid, greek(c.name), color=DRIVER, fontsize=10, fontstyle="italic",
-                  ha="center", va="center", zorder=11)
+            _angle_mark(ax, scene, c, greek(c.name), fontsize=10, fontstyle="italic")
             continue
         u = 1 if c.kind == "x" else 1j if c.kind == "y" else None
         if u is None:

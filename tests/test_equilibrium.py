@@ -1,0 +1,292 @@
+"""Static equilibrium and the Lagrangian's loads against independent calculations.
+
+The files of tests/data/equilibrium reproduce cases that were answered wrongly or refused:
+torsional springs whose free angle is written in another range than the figure's angle or
+whose body turns past 180 deg, a load scale that vanished at the equilibrium, a 'static'
+preload on a spring carried rigidly, a search from the figure that stalled, torques on a
+rolling disc's slider, a stiffness too small for the loads.  Every expected value is a closed
+form written here, or the value the file's title or notes give from an independent
+derivation, compared at its printed digits; nothing is taken from linkcli's output.
+"""
+from __future__ import annotations
+
+import math
+import os
+
+import numpy as np
+import pytest
+
+import linkcli
+from linkcli.cli import main
+from linkcli.errors import EquilibriumError
+from linkcli.forces import motion
+from linkcli.forces.equilibrium import equilibrium
+from linkcli.forces.lagrange import Lagrangian
+from linkcli.kinematics.solvers import solver_for
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", "equilibrium")
+G = 9.81
+
+
+def path(name):
+    return os.path.join(DATA, name)
+
+
+def text(name):
+    with open(path(name), encoding="utf-8") as handle:
+        return handle.read()
+
+
+def values(source):
+    """Every reported value of a file (a name in tests/data/equilibrium) or of YAML text."""
+    model = linkcli.load(path(source)) if source.endswith(".yaml") else linkcli.loads(source)
+    return {k: float(np.asarray(v)) for k, v in model.solve().values.items()}
+
+
+def turn(deg):
+    """An angle in degrees brought into [0, 360)."""
+    return deg % 360.0
+
+
+# --- torsional springs: deflections measured continuously from the figure ------------------
+def pendulum_with_torsion(k, th0_deg, m=1.0, L=1.0):
+    """V = 1/2 k (th - th0)^2 + m g L sin th (a point mass at the rod's end, th continuous):
+    the root of k (th - th0) + m g L cos th = 0 from th0 by Newton; returns the equilibrium
+    (deg), the spring's torque, K = k - m g L sin th and omega = sqrt(K / (m L^2))."""
+    th0 = math.radians(th0_deg)
+    th = th0
+    for _ in range(100):
+        f = k * (th - th0) + m * G * L * math.cos(th)
+        th -= f / (k - m * G * L * math.sin(th))
+    K = k - m * G * L * math.sin(th)
+    return math.degrees(th), k * (th - th0), K, math.sqrt(K / (m * L * L))
+
+
+@pytest.mark.parametrize("name, k, drawn", [
+    ("torsion-free-angle-270.yaml", 50.0, 270.0),
+    ("torsion-free-angle-wrong-answer.yaml", 2.0, 220.0),
+    ("torsion-crosses-180.yaml", 50.0, 178.0),
+])
+def test_a_torsional_pendulum_matches_its_closed_form(name, k, drawn):
+    """The notes' references (270 deg and 7.733693 rad/s; 261.506791 deg, 1.448860 N m,
+    11.702417 N m/rad, 3.420880 rad/s; 189.099947 deg, 9.686531 N m, 51.551522 N m/rad,
+    7.179939 rad/s) are this closed form's."""
+    th, torque, K, omega = pendulum_with_torsion(k, drawn)
+    got = values(name)
+    assert turn(got["th_e"]) == pytest.approx(turn(th), abs=1e-9)
+    assert got["N"] == pytest.approx(torque, abs=1e-9 * k)
+    assert got["k11"] == pytest.approx(K, rel=1e-9)
+    assert got["w1"] == pytest.approx(omega, rel=1e-9)
+
+
+def test_the_notes_values_are_the_closed_forms():
+    """The closed form above reproduces the repro files' independent values at their digits."""
+    for (k, drawn), expected in {(2.0, 220.0): (261.506791, 1.448860, 11.702417, 3.420880),
+                                 (50.0, 178.0): (189.099947, 9.686531, 51.551522, 7.179939),
+                                 (50.0, 270.0): (270.0, 0.0, 59.81, 7.733693)}.items():
+        got = pendulum_with_torsion(k, drawn)
+        assert np.allclose(got, expected, rtol=0, atol=5e-7), (got, expected)
+
+
+@pytest.mark.parametrize("written", ["270", "-90", "630", "-450"])
+def test_a_free_angle_is_read_in_whatever_range_it_is_written(written):
+    source = text("torsion-free-angle-270.yaml").replace("free_angle: 270",
+                                                           f"free_angle: {written}")
+    got = values(source)
+    assert turn(got["th_e"]) == pytest.approx(270.0, abs=1e-9)
+    assert got["N"] == pytest.approx(0.0, abs=1e-9)
+    assert got["w1"] == pytest.approx(math.sqrt(50 + G), rel=1e-12)
+
+
+def test_torsional_springs_on_a_bar_on_a_slider_reach_the_titles_equilibrium():
+    """Title: th = -23.8906 deg with the deflections measured continuously."""
+    got = values("torsional_free_angle_turn.yaml")
+    assert turn(got["eq_th"]) == pytest.approx(turn(-23.8906), abs=5e-5)
+
+
+# --- a load scale that does not vanish where a lever does -----------------------------------
+def test_a_spring_aligned_with_its_ends_motion_at_equilibrium_is_answered():
+    """Rod L = 1 m pivoted at O, 2 kg at P, spring k = 100 N/m of free length 0.5 m from
+    K = (2, 0.001) m to P, no gravity: the rod points at K, th = atan2(0.001, 2); the spring's
+    length is D - L (D = |OK|), N = k (D - L - 0.5), s'' = D L / (D - L), so K = N D L /
+    (D - L) (s' = 0 there), M = m L^2, omega = sqrt(K / M)."""
+    D, L, k, m = math.hypot(2, 0.001), 1.0, 100.0, 2.0
+    N = k * (D - L - 0.5)
+    K = N * D * L / (D - L)
+    got = values("load-scale-zero.yaml")
+    assert got["th_e"] == pytest.approx(math.degrees(math.atan2(0.001, 2)), rel=1e-9)
+    assert got["N"] == pytest.approx(N, rel=1e-12)
+    assert got["k11"] == pytest.approx(K, rel=1e-9)
+    assert got["w1"] == pytest.approx(math.sqrt(K / (m * L * L)), rel=1e-9)
+    assert (round(got["th_e"], 5), round(got["w1"], 6)) == (0.02865, 7.071069)
+
+
+def test_the_residual_is_measured_against_the_ends_speeds():
+    mech = linkcli.load(path("load-scale-zero.yaml")).model
+    eq = equilibrium(Lagrangian(mech, solver_for(mech)))
+    # the spring's force (50 N) times the speed of P (1 m/rad) and its strain k L: the scale
+    assert eq.scale[0] >= 50.0
+    assert eq.relative < 1e-10
+
+
+# --- 'preload: static' on a spring carried rigidly --------------------------------------------
+def rod_at(angle_deg):
+    """static-same-body.yaml with the rod drawn at ``angle_deg`` (local E = (0.3, 0.1), P = (1, 0))."""
+    e = complex(math.cos(math.radians(angle_deg)), math.sin(math.radians(angle_deg)))
+    P, E = e, (0.3 + 0.1j) * e
+    return text("static-same-body.yaml").replace(
+        "points: {P: [0.7313537016191707, -0.6819983600624983], E: [0.28760594649200105, "
+        "-0.1314641378568324]}", f"points: {{P: [{P.real!r}, {P.imag!r}], E: [{E.real!r}, "
+        f"{E.imag!r}]}}")
+
+
+@pytest.mark.parametrize("angle", [283, 300, 317, 331, 45.3])
+def test_a_static_preload_between_two_points_of_one_rod_is_undetermined(angle):
+    with pytest.raises(EquilibriumError) as info:
+        linkcli.loads(rod_at(angle)).solve()
+    assert info.value.reason == "undetermined"
+
+
+def test_the_static_preload_refusal_exits_3(capsys):
+    assert main(["solve", path("static-same-body.yaml")]) == 3
+    err = capsys.readouterr().err
+    assert "not determined by equilibrium" in err and "Traceback" not in err
+
+
+# --- the search from the figure -----------------------------------------------------------
+def test_the_search_reaches_the_stable_equilibrium_the_title_gives():
+    """Title: a stable equilibrium at xS = -0.12112 m, th1 = -42.63 deg."""
+    got = values("equilibrium_stalls_from_figure.yaml")
+    assert got["eq_xS"] == pytest.approx(-0.12112, abs=5e-6)
+    assert turn(got["eq_th1"]) == pytest.approx(turn(-42.63), abs=5e-3)
+    assert 0 < got["w1"] < got["w2"]
+
+
+def test_the_equilibrium_reached_is_a_minimum_of_the_potential():
+    mech = linkcli.load(path("equilibrium_stalls_from_figure.yaml")).model
+    lag = Lagrangian(mech, solver_for(mech))
+    eq = equilibrium(lag)
+    assert eq.stability == "stable" and eq.steps > 0 and eq.relative < 1e-10
+    V = lag.potential(eq.q)
+    rng = np.random.default_rng(7)
+    for _ in range(8):     # V rises every way out of it
+        assert lag.potential(eq.q + 1e-3 * lag.scales * rng.standard_normal(lag.n)) > V
+
+
+def test_a_stiffness_too_small_for_the_loads_is_refused_with_the_distance(capsys):
+    """k = 1e-300 N/m under m g = 490.5 N: the spring would hold the mass m g / k below."""
+    assert main(["solve", path("road_k_tiny.yaml")]) == 3
+    err = capsys.readouterr().err
+    assert "keeps falling along z" in err and "Traceback" not in err
+    assert f"{-50 * G / 1e-300:.4g} m" in err
+
+
+# --- torques on a rolling disc's slider act on the spinning disc -----------------------------
+def test_torques_on_a_discs_slider_act_on_the_disc():
+    """Disc m = 2 kg, J = 0.04 kg m^2, R = 0.2 m, k = 400 N/m; a constant 8 N m and a harmonic
+    1 N m at 5 rad/s on the slider: the spin is -v/R, so a torque M is the force -M/R on x:
+    x_e = -8 / 0.2 / 400, m* = m + J/R^2, X = (1/0.2) / (k - m* 25)."""
+    got = values("disc-torque-on-slider.yaml")
+    m_red = 2 + 0.04 / 0.2 ** 2
+    assert got["x_e"] == pytest.approx(-8 / 0.2 / 400, rel=1e-12)
+    assert got["m11"] == pytest.approx(m_red, rel=1e-12)
+    assert got["w1"] == pytest.approx(math.sqrt(400 / m_red), rel=1e-12)
+    assert got["X"] == pytest.approx(5 / (400 - m_red * 25), rel=1e-12)
+    assert abs(got["ph"]) == pytest.approx(180.0, abs=1e-9)
+
+
+def test_a_harmonic_torque_on_a_disc_on_a_slider_reaches_the_titles_amplitude():
+    """Title: the steady amplitude of xC is 0.0173615 m."""
+    assert values("harmonic_torque_on_disc_on_slider.yaml")["X_xC"] == \
+        pytest.approx(0.0173615, abs=5e-8)
+
+
+# --- energy: d(T + V)/dt is the power of the dampers and of the excitation ----------------------
+POWERED = ["harmonic_torque_on_disc_on_slider.yaml", "disc-torque-on-slider.yaml",
+           "torsional_free_angle_turn.yaml", "equilibrium_stalls_from_figure.yaml",
+           "torsion-crosses-180.yaml"]
+
+
+def _rates(lag, q, qd):
+    """Positions and velocities from the solver (not from the Lagrangian's jets)."""
+    solver = lag.solver
+    kin = solver.positions(q[0] if lag.n == 1 else tuple(q))
+    solver.velocities(kin, qd[0] if lag.n == 1 else tuple(qd))
+    return kin
+
+
+def _spin(mech, name, kin):
+    """omega of a body, or of the disc on a slider (the documented rule of dynamics.md)."""
+    disc = mech.dynamics.disc_on(name) if mech.dynamics else None
+    if disc is None and mech.dynamics is not None and name in mech.dynamics.discs:
+        disc = mech.dynamics.discs[name]
+    if disc is not None:
+        return float(motion.disc_spin(mech, disc, kin.pos, kin.vel)[0])
+    if name == "frame":
+        return 0.0
+    return float(motion.rotation(mech, name, kin.pos, kin.vel)[0])
+
+
+def _power(lag, q, qd, t):
+    """The power of the dampers (-c s'^2) and of the harmonic loads at time t, from point
+    velocities and spins."""
+    mech, el = lag.mech, lag.elements
+    kin = _rates(lag, q, qd)
+    pos, vel = kin.pos, kin.vel
+    total = 0.0
+    for d in el.dampers.values():
+        m = d.measure
+        if m.kind == "angle":
+            rate = _spin(mech, m.b, kin) - _spin(mech, m.a, kin)
+        else:
+            z = pos[m.b] - pos[m.a]
+            dz = vel.get(m.b, 0) - vel.get(m.a, 0)
+            u = z / abs(z) if m.kind == "distance" else m.direction
+            rate = float(np.real(np.conj(u) * dz))
+        total -= d.coefficient * rate ** 2
+    omega = el.frequency or 0.0
+    for h in el.forces.values():
+        amount = h.amplitude * math.cos(omega * t + h.phase)
+        if h.kind == "force":
+            total += amount * float(np.real(np.conj(h.direction) * vel.get(h.target, 0)))
+        else:
+            total += amount * _spin(mech, h.target, kin)
+    return total
+
+
+def _energy(lag, q, qd):
+    kin = _rates(lag, q, qd)
+    T = float(motion.kinetic_energy(lag.mech, lag.mech.dynamics, kin.pos, kin.vel))
+    return T + lag.potential(q)
+
+
+@pytest.mark.parametrize("name", POWERED)
+def test_the_energy_changes_by_the_power_of_the_dampers_and_the_excitation(name):
+    """At random configurations and rates, q'' from Lagrange's equations
+    M q'' = Q - R q' - c + Re(f e^{i Omega t}); d(T + V)/dt along q + q' t + q'' t^2 / 2 by
+    central differences (Richardson, error O(h^4)) against the power computed from the
+    solver's velocities.  T is summed body by body, V from positions only."""
+    mech = linkcli.load(path(name)).model
+    lag = Lagrangian(mech, solver_for(mech))
+    q_e = equilibrium(lag).q
+    omega = lag.elements.frequency or 0.0
+    rng = np.random.default_rng(11)
+    for _ in range(3):
+        q = q_e + 0.05 * lag.scales * rng.standard_normal(lag.n)
+        qd = lag.scales * rng.standard_normal(lag.n)
+        t = rng.uniform(0, 1)
+        terms = lag.terms(q)
+        rhs = terms.Q - terms.R @ qd - lag.convective(terms, qd) + \
+            np.real(lag.forcing(terms.jet) * np.exp(1j * omega * t))
+        qdd = np.linalg.solve(terms.M, rhs)
+
+        def rate(h):
+            ends = [_energy(lag, q + s * h * qd + 0.5 * h * h * qdd, qd + s * h * qdd)
+                    for s in (1, -1)]
+            return (ends[0] - ends[1]) / (2 * h)
+
+        h = 1e-3
+        dE = (4 * rate(h / 2) - rate(h)) / 3
+        power = _power(lag, q, qd, t)
+        scale = abs(qd) @ (np.abs(terms.Q) + np.abs(terms.M) @ np.abs(qdd)) + abs(power)
+        assert dE == pytest.approx(power, abs=1e-7 * scale), (dE, power)

@@ -32,15 +32,26 @@ def path(name):
     return os.path.join(DATA, name)
 
 
+def text_of_docs(name):
+    """A file of docs/examples, as text."""
+    docs = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "docs")
+    with open(os.path.join(docs, "examples", name), encoding="utf-8") as handle:
+        return handle.read()
+
+
 def text(name):
     with open(path(name), encoding="utf-8") as handle:
         return handle.read()
 
 
+def linkage(source):
+    """A file (a name in tests/data/equilibrium) or YAML text, loaded."""
+    return linkcli.load(path(source)) if source.endswith(".yaml") else linkcli.loads(source)
+
+
 def values(source):
-    """Every reported value of a file (a name in tests/data/equilibrium) or of YAML text."""
-    model = linkcli.load(path(source)) if source.endswith(".yaml") else linkcli.loads(source)
-    return {k: float(np.asarray(v)) for k, v in model.solve().values.items()}
+    """Every reported value of ``source`` (see ``linkage``)."""
+    return {k: float(np.asarray(v)) for k, v in linkage(source).solve().values.items()}
 
 
 def turn(deg):
@@ -174,11 +185,41 @@ def test_the_equilibrium_reached_is_a_minimum_of_the_potential():
 
 
 def test_a_stiffness_too_small_for_the_loads_is_refused_with_the_distance(capsys):
-    """k = 1e-300 N/m under m g = 490.5 N: the spring would hold the mass m g / k below."""
+    """k = 1e-300 N/m under m g = 490.5 N: the spring would hold the mass m g / k below (the
+    file's lengths are in mm)."""
     assert main(["solve", path("road_k_tiny.yaml")]) == 3
     err = capsys.readouterr().err
     assert "keeps falling along z" in err and "Traceback" not in err
-    assert f"{-50 * G / 1e-300:.4g} m" in err
+    assert f"{-50 * G / 1e-300 * 1000:.4g} mm" in err
+
+
+def test_an_unstable_figure_is_kept_and_named():
+    """A rod upright, a torsional spring weaker than m g L (5 < 9.81 N m/rad): the figure is an
+    equilibrium, a maximum of V; asked alone it is given with a warning naming it, and a
+    natural frequency is refused (omega^2 = (k - m g L) / (m L^2) = -4.81 1/s^2)."""
+    upright = text_of_docs("vib-upright.yaml")
+    result = linkcli.loads(upright).solve()
+    assert float(result.values["th_e"]) == pytest.approx(90.0, abs=1e-12)
+    assert [c.kind for c in result.cautions] == ["unstable"]
+    assert "a maximum of the potential energy" in result.cautions[0].detail
+    with pytest.raises(linkcli.LinkcliError) as info:
+        linkcli.loads(upright.replace("vibration: [th_e]", "vibration: [th_e, w1]")).solve()
+    assert info.value.exit_code == 3 and f"omega^2 = {5 - G:.6g} 1/s^2" in info.value.detail
+
+
+def test_a_search_that_reaches_a_dead_point_names_it():
+    """The rocker's angle as coordinate of a triple-rocker four-bar: gravity pulls it to the
+    end of the rocker's travel, where the crank and the coupler line up, |C - A| = AB + BC:
+    the rocker's angle there, from the triangle A, D, C, at 4 digits."""
+    with pytest.raises(EquilibriumError) as info:
+        linkcli.loads(text_of_docs("vib-rocker-limit.yaml")).solve()
+    assert info.value.reason == "stalled"
+    # the fold: |C - A| = 0.5 + 1.0 with C on the circle of 0.8 m about D = (1.3, -0.4)
+    D, r = 1.3 - 0.4j, 0.8
+    d = abs(D)
+    cos_angle = (r * r + d * d - 1.5 ** 2) / (2 * r * d)   # angle at D between D->A and D->C
+    fold = math.degrees(math.atan2(-D.imag, -D.real) - math.acos(cos_angle))
+    assert f"th = {turn(fold):.4g} deg" in info.value.detail, (fold, info.value.detail)
 
 
 # --- torques on a rolling disc's slider act on the spinning disc -----------------------------
@@ -201,6 +242,146 @@ def test_a_harmonic_torque_on_a_disc_on_a_slider_reaches_the_titles_amplitude():
         pytest.approx(0.0173615, abs=5e-8)
 
 
+# --- a torsional spring on a rolling disc ----------------------------------------------------
+DISC_TORSION = """
+title: disc rolling on the floor, a torsional spring between its hub and the disc
+units: {length: m, angle: deg}
+frame: {W: [-1, 0.2]}
+points: {C: [0, 0.2]}
+sliders: {hub: {point: C, guide: {y: 0.2}}}
+coordinates: {x: {x: C}}
+springs:
+  k: {between: [W, C], k: 400}
+  kt: {bodies: [hub, wheel], k: 6, free_angle: 30}
+dampers:
+  ct: {bodies: [frame, wheel], c: 0.2}
+dynamics:
+  discs: {wheel: {center: C, radius: 0.2, mass: 2, inertia: 0.04, side: left}}
+excitation:
+  frequency: 5
+  forces: {T: {on: wheel, torque: 1}}
+quantities:
+  x_e: {equilibrium: x}
+  k11: {stiffness_matrix: [x, x]}
+  r11: {damping_matrix: [x, x]}
+  w1: {natural_frequency: 1}
+  X: {amplitude: x}
+report:
+  vibration: [x_e, k11, r11, w1, X]
+"""
+
+
+def test_a_torsional_spring_and_damper_may_name_a_rolling_disc():
+    """The disc turns by theta = -x/R from the figure, so the spring kt (free at a turn of
+    30 deg) and the damper ct act on x through d theta/dx = -1/R: k* = k + kt/R^2,
+    c* = ct/R^2, m* = m + J/R^2; equilibrium k x + kt (-x/R - 30 deg)(-1/R) = 0; the torque
+    1 N m is the force -1/R on x: X = (1/R) / |k* - m* W^2 + i W c*|."""
+    R, k, kt, ct, m, J, W = 0.2, 400.0, 6.0, 0.2, 2.0, 0.04, 5.0
+    k_red, c_red, m_red = k + kt / R ** 2, ct / R ** 2, m + J / R ** 2
+    got = values(DISC_TORSION)
+    assert got["x_e"] == pytest.approx(-kt * math.radians(30) / R / k_red, rel=1e-9)
+    assert got["k11"] == pytest.approx(k_red, rel=1e-12)
+    assert got["r11"] == pytest.approx(c_red, rel=1e-12)
+    assert got["w1"] == pytest.approx(math.sqrt(k_red / m_red), rel=1e-12)
+    assert got["X"] == pytest.approx((1 / R) / abs(k_red - m_red * W * W + 1j * W * c_red),
+                                     rel=1e-12)
+
+
+# --- a coupler's angle as the coordinate ---------------------------------------------------
+COUPLER = """
+title: four-bar with the coupler's angle as the coordinate
+units: {length: m, angle: deg}
+frame: {A: [0, 0], D: [1.3, -0.4]}
+points: {B: [0.3, 0.4], C: [1.3, 0.4]}
+links:
+  AB: {points: [A, B], length: 0.5}
+  BC: {points: [B, C], length: 1}
+  CD: {points: [C, D], length: 0.8}
+coordinates:
+  th: {angle: [B, C]}
+springs:
+  kt: {bodies: [frame, CD], k: 50}
+dynamics:
+  gravity: 9.81
+  masses: {B: 1, C: 1}
+excitation:
+  frequency: 3
+  forces: {F: {at: C, x: 5}}
+quantities:
+  th_e: {equilibrium: th}
+  w1: {natural_frequency: 1}
+  X: {amplitude: th}
+report:
+  vibration: [th_e, w1, X]
+"""
+
+
+def four_bar_by_coupler(th, b_near):
+    """B and C with the coupler BC at angle th: B on the circle about A (0.5 m) and on the
+    circle about D - 1.0 e^{i th} (0.8 m), the intersection nearer ``b_near``."""
+    A, D, r1, L, r3 = 0j, 1.3 - 0.4j, 0.5, 1.0, 0.8
+    centre = D - L * complex(math.cos(th), math.sin(th))
+    d = abs(centre - A)
+    a = (r1 * r1 - r3 * r3 + d * d) / (2 * d)
+    h = math.sqrt(r1 * r1 - a * a)
+    u = (centre - A) / d
+    B = min((A + a * u + s * h * 1j * u for s in (1, -1)), key=lambda b: abs(b - b_near))
+    return B, B + L * complex(math.cos(th), math.sin(th))
+
+
+def coupler_reference():
+    """V(th) = m g (y_B + y_C) + 1/2 k (psi - 90 deg)^2, psi = arg(C - D) (90 deg drawn);
+    th followed from the figure (0) up to the first zero of V' with V'' > 0 (brentq on
+    central differences), then omega^2 = V''/M, M = m (|B'|^2 + |C'|^2), and the amplitude
+    X = F Re(C') / (V'' - W^2 M) of the 5 N force along x at C, W = 3 rad/s."""
+    from scipy.optimize import brentq
+    state = {"B": 0.3 + 0.4j}
+
+    def points(th):
+        return four_bar_by_coupler(th, state["B"])
+
+    def V(th):
+        B, C = points(th)
+        psi = math.atan2((C - (1.3 - 0.4j)).imag, (C - (1.3 - 0.4j)).real)
+        return G * (B.imag + C.imag) + 0.5 * 50 * (psi - math.pi / 2) ** 2
+
+    def dV(th, h=1e-6):
+        return (V(th + h) - V(th - h)) / (2 * h)
+
+    th, step = 0.0, math.radians(0.5)
+    while dV(th) * dV(th + step) > 0:
+        th += step
+        state["B"] = points(th)[0]
+    th = brentq(dV, th, th + step, xtol=1e-14)
+    state["B"] = points(th)[0]
+    h = 1e-4
+    K = (V(th + h) - 2 * V(th) + V(th - h)) / (h * h)
+    (Bp, Cp), (Bm, Cm) = points(th + h), points(th - h)
+    dB, dC = (Bp - Bm) / (2 * h), (Cp - Cm) / (2 * h)
+    M = abs(dB) ** 2 + abs(dC) ** 2
+    return math.degrees(th), math.sqrt(K / M), 5 * dC.real / (K - 9 * M)
+
+
+def test_a_couplers_angle_is_a_coordinate_where_it_turns():
+    th, omega, X = coupler_reference()
+    got = values(COUPLER)
+    assert got["th_e"] == pytest.approx(th, abs=1e-6)
+    assert got["w1"] == pytest.approx(omega, rel=1e-6)
+    assert got["X"] == pytest.approx(abs(math.degrees(X)), rel=1e-6)
+
+
+def test_a_couplers_angle_that_does_not_turn_is_refused(capsys, tmp_path):
+    """A parallelogram's coupler keeps its angle: it cannot be a coordinate."""
+    parallelogram = COUPLER.replace("D: [1.3, -0.4]", "D: [1, 0]").replace(
+        "CD: {points: [C, D], length: 0.8}", "CD: {points: [C, D], length: 0.5}")
+    file = tmp_path / "parallelogram.yaml"
+    file.write_text(parallelogram)
+    assert main(["solve", str(file)]) == 3
+    err = capsys.readouterr().err
+    assert "th (the angle of B->C) cannot serve as a coordinate" in err
+    assert "does not change as the mechanism moves" in err and "Traceback" not in err
+
+
 # --- energy: d(T + V)/dt is the power of the dampers and of the excitation ----------------------
 POWERED = ["harmonic_torque_on_disc_on_slider.yaml", "disc-torque-on-slider.yaml",
            "torsional_free_angle_turn.yaml", "equilibrium_stalls_from_figure.yaml",
@@ -215,11 +396,11 @@ def _rates(lag, q, qd):
     return kin
 
 
-def _spin(mech, name, kin):
-    """omega of a body, or of the disc on a slider (the documented rule of dynamics.md)."""
-    disc = mech.dynamics.disc_on(name) if mech.dynamics else None
-    if disc is None and mech.dynamics is not None and name in mech.dynamics.discs:
-        disc = mech.dynamics.discs[name]
+def _spin(mech, name, kin, torque=False):
+    """omega of a body or a disc; a torque on a disc's slider turns the disc (the documented
+    rule of dynamics.md)."""
+    discs = mech.dynamics.discs if mech.dynamics else {}
+    disc = discs.get(name) or (mech.dynamics.disc_on(name) if torque and discs else None)
     if disc is not None:
         return float(motion.disc_spin(mech, disc, kin.pos, kin.vel)[0])
     if name == "frame":
@@ -250,7 +431,7 @@ def _power(lag, q, qd, t):
         if h.kind == "force":
             total += amount * float(np.real(np.conj(h.direction) * vel.get(h.target, 0)))
         else:
-            total += amount * _spin(mech, h.target, kin)
+            total += amount * _spin(mech, h.target, kin, torque=True)
     return total
 
 
@@ -260,13 +441,13 @@ def _energy(lag, q, qd):
     return T + lag.potential(q)
 
 
-@pytest.mark.parametrize("name", POWERED)
+@pytest.mark.parametrize("name", POWERED + ["disc torsion", "coupler"])
 def test_the_energy_changes_by_the_power_of_the_dampers_and_the_excitation(name):
     """At random configurations and rates, q'' from Lagrange's equations
     M q'' = Q - R q' - c + Re(f e^{i Omega t}); d(T + V)/dt along q + q' t + q'' t^2 / 2 by
     central differences (Richardson, error O(h^4)) against the power computed from the
     solver's velocities.  T is summed body by body, V from positions only."""
-    mech = linkcli.load(path(name)).model
+    mech = linkage({"disc torsion": DISC_TORSION, "coupler": COUPLER}.get(name, name)).model
     lag = Lagrangian(mech, solver_for(mech))
     q_e = equilibrium(lag).q
     omega = lag.elements.frequency or 0.0

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.errors import EquilibriumError, SolveError
+from linkcli.errors import Caution, EquilibriumError, SingularError, SolveError
 from linkcli.forces.lagrange import Lagrangian, Terms
 from linkcli.model import elements as el
 
@@ -163,28 +163,49 @@ def equilibrium(lag: Lagrangian) -> Equilibrium:
         result = _descend(lag, terms, free, preloads)
         if result.relative <= TOL and result.stability in ("saddle", "maximum"):
             raise EquilibriumError(
-                f"the search from the figure stopped at a {result.stability} of the potential "
+                f"the search from the figure stopped at a {_kind(result)} of the potential "
                 f"energy ({_where(lag, result)}), not at a stable equilibrium",
                 reason="stalled", residual=result.relative, file=mech.file,
                 hint="draw the figure nearer the equilibrium the exam means")
+    if result.stability in ("saddle", "maximum") and result.relative <= TOL:
+        result.cautions.append(Caution(
+            "unstable", f"the static equilibrium, the figure ({_where(lag, result)}), is "
+            f"unstable: a {_kind(result)} of the potential energy, which the mechanism leaves "
+            "at the least disturbance", mech.file))
+    if result.relative > TOL and result.refused is not None:
+        what = "a toggle or dead point" if isinstance(result.refused, SingularError) else \
+            "it cannot be assembled further"
+        raise EquilibriumError(
+            f"no static equilibrium found from the figure: the search stops at "
+            f"{_where(lag, result, 4)}, where the mechanism cannot move on ({what}) and the "
+            "potential energy still falls", reason="stalled", residual=result.relative,
+            file=mech.file, hint="the equilibrium may lie beyond it: take as coordinate the "
+            "angle of a link that keeps turning there, or check the springs and loads")
     if result.relative > TOL:
         forces = ", ".join(f"{mech.coordinates[j].name}: {result.terms.Q[j]:.6g}" for j in free)
         where = "the figure is not a static equilibrium" if mode == "figure" else \
             "no static equilibrium found from the figure"
-        stop = "" if result.refused is None else \
-            f"; the search stops where the mechanism cannot move on: {result.refused.detail}"
         raise EquilibriumError(
             f"{where}: residual generalised forces {forces} (SI; {result.relative:.2e} of the "
-            f"load scale){stop}", reason="figure" if mode == "figure" else "stalled",
+            "load scale)", reason="figure" if mode == "figure" else "stalled",
             residual=result.relative, file=mech.file,
             hint="check the springs' free lengths and preloads, the masses and gravity"
             + ("; or let it be solved ('equilibrium: solve')" if mode == "figure" else ""))
     return result
 
 
-def _where(lag, result) -> str:
-    """The free coordinates at the result, in SI (rad, m)."""
-    return ", ".join(f"{lag.mech.coordinates[j].name} = {result.q[j]:.6g}" for j in result.free)
+def _kind(result) -> str:
+    return "saddle point" if result.stability == "saddle" else result.stability
+
+
+def _where(lag, result, digits=6) -> str:
+    """The free coordinates at the result, in the file's angle and length units."""
+    out = []
+    for j in result.free:
+        c = lag.mech.coordinates[j]
+        unit, factor = lag.mech.units.display("angle" if c.kind == "angle" else "length", 0)
+        out.append(f"{c.name} = {result.q[j] / factor:.{digits}g} {unit}")
+    return ", ".join(out)
 
 
 def _result(lag, terms, free, preloads, steps=0) -> Equilibrium:
@@ -320,15 +341,17 @@ def _unbounded(lag, start: Terms, free, y) -> EquilibriumError:
     mech = lag.mech
     names = [mech.coordinates[free[k]].name for k in np.argsort(-np.abs(y))[:2]
              if abs(y[k]) > 0.1 * np.max(np.abs(y))]
-    detail = (f"no static equilibrium within {REACH:g} times the coordinates' scale of the "
-              f"figure: the potential energy keeps falling along {', '.join(names)}")
+    detail = (f"no static equilibrium within {REACH:g} times the mechanism's size (1 rad for an "
+              f"angle) of the figure: the potential energy keeps falling along "
+              f"{', '.join(names)}")
     K = start.K[np.ix_(free, free)]
     if stability(lag, start, free) == "stable":
         delta = np.linalg.solve(K, start.Q[free])
         k = int(np.argmax(np.abs(delta) / lag.scales[free]))
-        unit = "rad" if mech.coordinates[free[k]].kind == "angle" else "m"
+        c = mech.coordinates[free[k]]
+        unit, factor = mech.units.display("angle" if c.kind == "angle" else "length", 0)
         detail += (f" (linearised at the figure, the springs would hold the loads with "
-                   f"{mech.coordinates[free[k]].name} moved by {delta[k]:.4g} {unit})")
+                   f"{c.name} moved by {delta[k] / factor:.4g} {unit})")
     return EquilibriumError(detail, reason="unbounded", file=mech.file,
                             hint="check the stiffnesses against the loads and gravity: a "
                             "coordinate that no spring holds has no equilibrium")

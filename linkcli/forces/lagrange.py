@@ -29,15 +29,14 @@ instead of jumping by a turn.  A torsional spring's free angle names a
 direction, written in any range: it is taken a whole number of turns from the
 figure's relative angle so that the figure's deflection lies in [-180, 180]
 deg.  A rolling disc turns by theta = -s (x_C - x_C,figure) / R (x_C its centre
-along the floor's direction u, s its side), 0 in the figure; the disc stands for
-its slider in every rotation (a torque or a torsional element named by the disc
-or by its slider acts on the spinning disc: the block itself does not turn).
+along the floor's direction u, s its side), 0 in the figure.  A torque (constant
+or harmonic) on a disc's slider acts on the spinning disc (the block slides on a
+fixed guide and cannot take it); a torsional element names the disc or the block.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -102,14 +101,11 @@ class Lagrangian:
         self.size = float(np.max(np.abs(points - points.mean()))) or 1.0   # m
         self.scales = np.array([1.0 if c.kind == "angle" else self.size
                                 for c in mech.coordinates])
-        self.discs = {}                  # a disc by its name and by its slider's
-        for disc in (self.dyn.discs.values() if self.dyn is not None else ()):
-            self.discs[disc.name] = self.discs[disc.slider] = disc
-        self.turning = sorted(self._rotating() - set(self.discs) - {FRAME})
-        self._rolled = {}
+        self.discs = dict(self.dyn.discs) if self.dyn is not None else {}
+        self.rotating = self._rotating()
+        self.turning = sorted(self.rotating - set(self.discs) - {FRAME})
         figure = self.jet(self.figure, second=False)
-        self._rolled = {d.name: float(self._roll(figure, d).value)
-                        for d in set(self.discs.values())}
+        self._rolled = {d.name: float(self._roll(figure, d).value) for d in self.discs.values()}
         raw = {b: float(jac.body_angle(mech, figure, b).value) for b in self.turning}
         self._anchors = [(self.figure.copy(), raw)]
         rotations = self.rotations(self.figure, figure)
@@ -125,13 +121,18 @@ class Lagrangian:
 
     def _rotating(self) -> set:
         """The bodies whose rotation an element or a load acts through."""
-        out = {e.measure.a for e in self.elements.springs.values() if e.measure.kind == "angle"}
-        out |= {e.measure.b for e in self.elements.springs.values() if e.measure.kind == "angle"}
-        out |= {e.measure.a for e in self.elements.dampers.values() if e.measure.kind == "angle"}
-        out |= {e.measure.b for e in self.elements.dampers.values() if e.measure.kind == "angle"}
-        out |= {h.target for h in self.elements.forces.values() if h.kind == "torque"}
-        out |= {load.target for load in self.mech.loads.values() if load.kind == "torque"}
-        return out
+        out = set()
+        for e in list(self.elements.springs.values()) + list(self.elements.dampers.values()):
+            if e.measure.kind == "angle":
+                out |= {e.measure.a, e.measure.b}
+        torques = [h.target for h in self.elements.forces.values() if h.kind == "torque"]
+        torques += [load.target for load in self.mech.loads.values() if load.kind == "torque"]
+        return out | {self.torqued(name) for name in torques}
+
+    def torqued(self, name) -> str:
+        """The body a torque on ``name`` turns: the disc whose slider ``name`` is, or itself."""
+        disc = self.dyn.disc_on(name) if self.dyn is not None else None
+        return name if disc is None else disc.name
 
     def _free_measure(self, spring, s) -> float:
         """s0 of a spring given its free measure: a torsional spring's free angle is a
@@ -165,10 +166,9 @@ class Lagrangian:
 
     def rotations(self, q, jt) -> dict:
         """The rotation of every body an element or load acts through, at coordinates ``q``
-        whose jet is ``jt``: measured continuously from the figure (a disc's, or its
-        slider's, is the disc's spin)."""
+        whose jet is ``jt``: measured continuously from the figure (a disc's is its spin)."""
         out = {}
-        for name in self._rotating():
+        for name in self.rotating:
             disc = self.discs.get(name)
             out[name] = self._spin(jt, disc) if disc is not None else \
                 jac.body_angle(self.mech, jt, name)
@@ -313,7 +313,7 @@ class Lagrangian:
         if load.kind == "force":
             return jac.along(jt, None, load.target, load.direction)
         if load.kind == "torque":
-            return rotations[load.target]
+            return rotations[self.torqued(load.target)]
         if load.kind == "axial":
             act = self.mech.actuators[load.target]
             return jac.distance(jt, act.a, act.b)
@@ -325,7 +325,7 @@ class Lagrangian:
         if load.kind == "force":
             return np.array([abs(jt.d1(load.target, i)) for i in range(n)], float)
         if load.kind == "torque":
-            return np.abs(np.asarray(rotations[load.target].grad, dtype=float))
+            return np.abs(np.asarray(rotations[self.torqued(load.target)].grad, dtype=float))
         act = self.mech.actuators[load.target]
         return self.lever(jt, el.Measure("distance", act.a, act.b), rotations)
 
@@ -336,8 +336,8 @@ class Lagrangian:
         for h in self.elements.forces.values():
             if h.kind == "force":
                 s = jac.along(jt, None, h.target, h.direction)
-            elif h.target in self.discs:
-                s = self._spin(jt, self.discs[h.target])
+            elif self.torqued(h.target) in self.discs:
+                s = self._spin(jt, self.discs[self.torqued(h.target)])
             else:
                 s = jac.body_angle(self.mech, jt, h.target)
             f += h.amplitude * np.exp(1j * h.phase) * np.asarray(s.grad, dtype=float)

@@ -370,6 +370,77 @@ def test_a_couplers_angle_is_a_coordinate_where_it_turns():
     assert got["X"] == pytest.approx(abs(math.degrees(X)), rel=1e-6)
 
 
+FIVE_BAR = """
+title: five-bar, a crank's and a coupler's angles as coordinates
+units: {length: m, angle: deg}
+frame: {A: [0, 0], E: [1, 0]}
+points: {B: [0, 0.5], C: [0.5, 0.8], D: [1, 0.5]}
+links:
+  AB: {points: [A, B], length: 0.5}
+  BC: {points: [B, C], length: sqrt(0.34)}
+  CD: {points: [C, D], length: sqrt(0.34)}
+  DE: {points: [D, E], length: 0.5}
+coordinates:
+  a: {angle: [A, B]}
+  b: {angle: [B, C]}
+springs:
+  k1: {bodies: [frame, AB], k: 40}
+  k2: {bodies: [frame, DE], k: 40}
+dynamics:
+  gravity: 9.81
+  masses: {B: 1, C: 2, D: 1}
+quantities:
+  ae: {equilibrium: a}
+  be: {equilibrium: b}
+  w1: {natural_frequency: 1}
+  w2: {natural_frequency: 2}
+report: {vibration: [ae, be, w1, w2]}
+"""
+
+
+def test_a_couplers_angle_is_a_coordinate_with_another():
+    """Two degrees of freedom: at linkcli's equilibrium (a, b), V(a, b) written here in closed
+    form (D where the circles about E and C meet, on the side it is found) is stationary,
+    and omega^2 are the eigenvalues of K u = omega^2 M u with K the Hessian of V and M from
+    the points' velocities, both by central differences."""
+    import scipy.linalg
+    L, E = math.sqrt(0.34), 1 + 0j
+    got = values(FIVE_BAR)
+    a0, b0 = math.radians(got["ae"]), math.radians(got["be"])
+    side = {}
+
+    def points(q):
+        B = 0.5 * complex(math.cos(q[0]), math.sin(q[0]))
+        C = B + L * complex(math.cos(q[1]), math.sin(q[1]))
+        d = abs(C - E)
+        x = (0.25 - L * L + d * d) / (2 * d)
+        u = (C - E) / d
+        both = [E + x * u + s * math.sqrt(0.25 - x * x) * 1j * u for s in (1, -1)]
+        if "D" not in side:          # the assembly whose rocker is nearest upright
+            side["D"] = min((1, -1), key=lambda s: abs(both[(1 - s) // 2] - (1 + 0.5j)))
+        return B, C, both[(1 - side["D"]) // 2]
+
+    def V(q):
+        B, C, D = points(q)
+        psi = math.atan2((D - E).imag, (D - E).real)
+        return G * (B.imag + 2 * C.imag + D.imag) + 20 * (q[0] - math.pi / 2) ** 2 + \
+            20 * (psi - math.pi / 2) ** 2
+
+    q = np.array([a0, b0])
+    h, I = 1e-4, np.eye(2)
+    grad = [(V(q + h * I[i]) - V(q - h * I[i])) / (2 * h) for i in range(2)]
+    assert max(map(abs, grad)) < 1e-6 * G
+    K = np.array([[(V(q + h * I[i] + h * I[j]) - V(q + h * I[i] - h * I[j])
+                    - V(q - h * I[i] + h * I[j]) + V(q - h * I[i] - h * I[j])) / (4 * h * h)
+                   for j in range(2)] for i in range(2)])
+    columns = [[(p - m) / (2 * h) for p, m in zip(points(q + h * I[i]), points(q - h * I[i]))]
+               for i in range(2)]
+    M = np.array([[sum(w * np.real(np.conj(columns[i][k]) * columns[j][k])
+                       for k, w in enumerate((1, 2, 1))) for j in range(2)] for i in range(2)])
+    omega = np.sqrt(scipy.linalg.eigh(K, M, eigvals_only=True))
+    assert [got["w1"], got["w2"]] == pytest.approx(omega, rel=1e-6)
+
+
 def test_a_couplers_angle_that_does_not_turn_is_refused(capsys, tmp_path):
     """A parallelogram's coupler keeps its angle: it cannot be a coordinate."""
     parallelogram = COUPLER.replace("D: [1.3, -0.4]", "D: [1, 0]").replace(
@@ -441,13 +512,14 @@ def _energy(lag, q, qd):
     return T + lag.potential(q)
 
 
-@pytest.mark.parametrize("name", POWERED + ["disc torsion", "coupler"])
+@pytest.mark.parametrize("name", POWERED + ["disc torsion", "coupler", "five-bar"])
 def test_the_energy_changes_by_the_power_of_the_dampers_and_the_excitation(name):
     """At random configurations and rates, q'' from Lagrange's equations
     M q'' = Q - R q' - c + Re(f e^{i Omega t}); d(T + V)/dt along q + q' t + q'' t^2 / 2 by
     central differences (Richardson, error O(h^4)) against the power computed from the
     solver's velocities.  T is summed body by body, V from positions only."""
-    mech = linkage({"disc torsion": DISC_TORSION, "coupler": COUPLER}.get(name, name)).model
+    mech = linkage({"disc torsion": DISC_TORSION, "coupler": COUPLER,
+                    "five-bar": FIVE_BAR}.get(name, name)).model
     lag = Lagrangian(mech, solver_for(mech))
     q_e = equilibrium(lag).q
     omega = lag.elements.frequency or 0.0

@@ -810,9 +810,6 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, output, f
         if ks is not None and len(ks) > 1:
             raise InputError("a worked solution is for one digit", key="--k",
                              hint="give one digit, e.g. --k 3")
-        from linkcli.exports import worked
-        from linkcli.input.document import build
-        mech = build(doc, ks[0] if ks else None)
-        items = worked.blocks(mech, lang, figure=not no_figure and target == "html")
-        text = worked.to_html(items, lang) if target == "html" else worked.to_markdown(items)
+        from linkcli.exports.worked import document
+        text = document(doc, ks[0] if ks else None, target, lang, figure=not no_figure)
     _emit(text.rstrip("\n"), output)

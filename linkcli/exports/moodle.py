@@ -33,6 +33,7 @@ from linkcli.answers.formats import HEADINGS, fmt
 from linkcli.answers.quantities import report_names
 from linkcli.answers.sheet import evaluate
 from linkcli.errors import InputError, LinkcliError, SolveError
+from linkcli.exports.text import refuse_unfit, visible
 from linkcli.input.document import build
 from linkcli.model.mechanism import REPORT_SECTIONS
 
@@ -134,6 +135,7 @@ def question_html(mech, result, decimals, tolerance, box_weights, lang, figure_n
 def export(doc, ks, decimals=None, tolerance=None, lang="it", figure=True) -> str:
     """The Moodle XML text for the document ``doc`` at digits ``ks`` (None: the file's own)."""
     from linkcli.exports.figure import figure_bytes
+    refuse_unfit(doc)
     base = build(doc, None)
     if not report_names(base):
         raise InputError("the file has no report to ask", file=base.file, key="report",
@@ -174,5 +176,5 @@ def export(doc, ks, decimals=None, tolerance=None, lang="it", figure=True) -> st
         ET.SubElement(q, "idnumber").text = f"{name}-k{mech.k}" if mech.k is not None else name
         ET.SubElement(q, "defaultgrade").text = f"{total:g}"
     ET.indent(quiz)
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(quiz, encoding="unicode") \
-        + "\n"
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + \
+        visible(ET.tostring(quiz, encoding="unicode")) + "\n"

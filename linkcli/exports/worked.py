@@ -22,6 +22,8 @@ import numpy as np
 from linkcli.answers.explain import explain
 from linkcli.answers.formats import HEADINGS, fmt
 from linkcli.answers.sheet import evaluate
+from linkcli.exports.text import fence, markdown, refuse_unfit, visible
+from linkcli.input.document import build
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import REPORT_SECTIONS
 
@@ -60,6 +62,14 @@ class Block:
 def _xy(z, f):
     z = complex(np.ravel(z)[0]) / f
     return f"({z.real:.6g}, {z.imag:.6g})"
+
+
+def document(doc, k=None, target="html", lang="en", figure=True) -> str:
+    """The worked solution of the loaded document ``doc`` at digit ``k`` (None: the file's
+    own) as one HTML page (``target`` 'html', with the figure) or Markdown."""
+    refuse_unfit(doc)
+    items = blocks(build(doc, k), lang, figure=figure and target == "html")
+    return to_html(items, lang) if target == "html" else to_markdown(items)
 
 
 def blocks(mech, lang="en", figure=True) -> list:
@@ -180,7 +190,8 @@ def _statics(mech, solver, kin, w):
 
 # --- renderers ---------------------------------------------------------------------------
 def to_html(items, lang="en") -> str:
-    esc = html.escape
+    def esc(text):
+        return html.escape(visible(text))
     body = []
     for b in items:
         if b.kind == "heading":
@@ -197,7 +208,7 @@ def to_html(items, lang="en") -> str:
             body.append(f'<table class="results"><thead><tr>{head}</tr></thead>'
                         f"<tbody>{rows}</tbody></table>")
         elif b.kind == "figure":
-            svg = b.content[b.content.find("<svg"):]
+            svg = visible(b.content[b.content.find("<svg"):])
             body.append(f'<div class="figure">{svg}</div>')
     title = esc(str(items[0].content)) if items else "linkcli"
     style = ("body{font-family:sans-serif;max-width:60em;margin:2em auto;padding:0 1em}"
@@ -215,12 +226,12 @@ def to_markdown(items) -> str:
     first = True
     for b in items:
         if b.kind == "heading":
-            out.append(("# " if first else "## ") + str(b.content).replace("\n", " "))
+            out.append(("# " if first else "## ") + _md(b.content))
             first = False
         elif b.kind == "text":
-            out.append(str(b.content))
+            out.append(markdown(b.content))
         elif b.kind == "lines":
-            out.append("```\n" + "\n".join(str(x) for x in b.content) + "\n```")
+            out.append(fence(str(x) for x in b.content))
         elif b.kind == "table":
             out.append("\n".join(["| " + " | ".join(_md(h) for h in b.header) + " |",
                                   "|" + " --- |" * len(b.header)] +
@@ -232,7 +243,5 @@ def to_markdown(items) -> str:
 
 
 def _md(value) -> str:
-    text = str(value)
-    for ch in "\\|*_`<>[]":
-        text = text.replace(ch, "\\" + ch)
-    return text
+    """One line of Markdown (a heading, a table cell) showing ``value`` as it is."""
+    return markdown(" ".join(str(value).splitlines()))

@@ -234,8 +234,9 @@ def _continuous(mech, name, y, unit):
 
 
 def _wrap(text, width=80):
+    """The file's title on at most three lines, as text: a '$' is not mathtext's."""
     import textwrap
-    return "\n".join(textwrap.wrap(str(text), width)[:3])
+    return "\n".join(textwrap.wrap(str(text), width)[:3]).replace("$", r"\$")
 
 
 # --- draw and animate ------------------------------------------------------------------------

@@ -120,7 +120,7 @@ def test_k_range_on_a_file_without_k(ks, message):
 
 
 def test_tolerance_must_be_positive():
-    with pytest.raises(InputError, match="tolerance must be positive"):
+    with pytest.raises(InputError, match="tolerance must be a positive finite number"):
         moodle.export(load_text(HOSTILE, "h.yaml"), None, tolerance=0.0, figure=False)
 
 

@@ -13,7 +13,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cli_helpers import CODE, FOURBAR, run  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-DATA = os.path.join(ROOT, "tests", "data")
+DATA = os.path.join(ROOT, "tests", "data", "trust")   # repro files of this round
 
 
 @pytest.fixture
@@ -178,3 +178,117 @@ def test_markdown_and_html_carry_no_markup_of_the_file(source, tmp_path):
                                     "h2", "p", "pre", "table", "thead", "tbody", "tr", "th",
                                     "td"}, tags
     assert not any("javascript:" in (v or "") for _, attrs in tags for _, v in attrs)
+
+
+# --- bounds of the options ------------------------------------------------------------------
+@pytest.mark.parametrize("value", ["inf", "-inf", "nan", "0", "-1"])
+def test_export_tolerance_must_be_positive_and_finite(fourbar, value):
+    code, out, err = run(["export", fourbar, "--to", "moodle", "--no-figure",
+                          f"--tolerance={value}", "-o", os.devnull, "--force"])
+    assert code == 2, out + err
+    assert "key '--tolerance'" in err and "positive finite" in err
+
+
+@pytest.mark.parametrize("command", ["batch", "export"])
+@pytest.mark.parametrize("ks, digit", [("5,5", 5), ("0-9,3", 3), ("2-4,4-6", 4)])
+def test_a_digit_given_twice_is_refused(command, ks, digit):
+    path = os.path.join(ROOT, "mechanisms", "padova-2020-02.yaml")
+    extra = ["--to", "moodle", "--no-figure", "-o", os.devnull, "--force"] \
+        if command == "export" else []
+    code, out, err = run([command, path, f"--k={ks}"] + extra)
+    assert code == 2, out + err
+    assert "key '--k'" in err and f"digit {digit} is given twice" in err
+
+
+def test_a_k_range_is_checked_before_it_is_made():
+    from linkcli.answers.batch import parse_k
+    from linkcli.errors import InputError
+    with pytest.raises(InputError, match="digit 0-9, got 999999999999"):
+        parse_k("0-999999999999")       # a range of 10^12 digits was listed, then checked
+    assert parse_k("0-2,5,7-9") == [0, 1, 2, 5, 7, 8, 9]
+
+
+UNDAMPED = os.path.join(DATA, "undamped-forced.yaml")      # omega_n = 10 rad/s
+
+
+@pytest.mark.parametrize("span, reason", [
+    ("-5:20:40", "cannot be negative"),
+    ("0:20", "cannot read frf"),
+    ("0:inf:10", "need finite FROM"),
+])
+def test_frf_refuses_negative_frequencies_and_names_its_option(span, reason, tmp_path):
+    code, out, err = run(["plot", UNDAMPED, "--frf", span, "-o", tmp_path / "f.png"])
+    assert code == 2, out + err
+    assert "key '--frf'" in err and reason in err and "--sweep" not in err
+
+
+def test_frf_names_an_undamped_resonance_it_samples(tmp_path):
+    notes = []
+    from linkcli.api import load
+    from linkcli.pictures import vibration
+    said = vibration.frf(load(UNDAMPED).model, "0:20:40", [], str(tmp_path / "f.png"),
+                         notify=notes.append)
+    assert said == notes and len(notes) == 1        # Omega = 10 rad/s = sqrt(k/m), exactly
+    assert "Omega = 10 rad/s is an undamped resonance" in notes[0]
+    assert (tmp_path / "f.png").stat().st_size > 0
+    said = vibration.frf(load(UNDAMPED).model, "0:20:41", [], str(tmp_path / "g.png"),
+                         notify=notes.append)
+    assert said == []                               # 10 rad/s is not a sample
+
+
+@pytest.mark.parametrize("span, reason", [
+    ("0:200:100000", "318.3 periods is more than the limit of 200"),   # 200 / (2 pi / 10)
+    ("0:5:20", "2.513 samples per period"),        # 20 steps over 5 / 0.6283 periods
+    ("0:5:159", "19.98 samples per period"),
+    ("1:5:200", "must run from 0"),
+])
+def test_free_response_is_bounded_and_not_aliased(span, reason, tmp_path):
+    code, out, err = run(["plot", UNDAMPED, "--free", span, "-o", tmp_path / "f.png"])
+    assert code == 2, out + err
+    assert "key '--free'" in err and reason in err
+
+
+def test_free_response_at_twenty_samples_a_period_is_drawn(tmp_path):
+    code, out, err = run(["plot", UNDAMPED, "--free", "0:5:160", "-o", tmp_path / "f.png"])
+    assert code == 0, out + err
+
+
+# --- names and values the file may write --------------------------------------------------
+def test_gravity_off_quoted_is_gravity_off():
+    from linkcli.api import load
+    quoted = load(os.path.join(DATA, "gravity-off-quoted.yaml")).model
+    text = open(os.path.join(DATA, "gravity-off-quoted.yaml"), encoding="utf-8").read()
+    bare = linkcli_loads(text.replace("gravity: 'off'", "gravity: off"))
+    assert quoted.dynamics.gravity == bare.dynamics.gravity == 0j
+    on = text.replace("gravity: 'off'", "gravity: 'on'")
+    code, out, err = run(["solve", "-"], stdin=on)
+    assert code == 2 and "dynamics.gravity" in err and "give gravity's value g" in err
+
+
+def linkcli_loads(text):
+    import linkcli
+    return linkcli.loads(text).model
+
+
+@pytest.mark.parametrize("section, body", [
+    ("sliders", "frame: {point: P, guide: {x: 0}}"),
+    ("links", "frame: {points: [B, P], length: 0.5}"),
+    ("actuators", "frame: {points: [B, P]}"),
+])
+def test_the_fixed_body_s_name_is_refused_for_any_body(section, body):
+    if section == "sliders":
+        code, out, err = run(["validate", os.path.join(DATA, "slider_named_frame.yaml")])
+    else:
+        text = open(os.path.join(DATA, "slider_named_frame.yaml"), encoding="utf-8").read()
+        code, out, err = run(["validate", "-"], stdin=text.replace(
+            "sliders:\n  frame: {point: P, guide: {x: 0}}",
+            f"sliders:\n  post: {{point: P, guide: {{x: 0}}}}\n{section}:\n  {body}"))
+    assert code == 2, out + err
+    assert f"key '{section}.frame'" in out and "name of the fixed body" in out
+    assert "ring" not in out
+
+
+def test_k_as_a_parameter_says_it_is_the_matricola_digit():
+    code, out, err = run(["validate", "-"], stdin=FOURBAR + "params: {k: 3}\n")
+    assert code == 2
+    assert "key 'params.k'" in out and "matricola" in out

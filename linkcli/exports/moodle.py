@@ -45,8 +45,9 @@ def text(value) -> str:
 
 def tolerance_for(mech, decimals: int, given: float | None) -> float:
     if given is not None:
-        if not given > 0:
-            raise InputError(f"a tolerance must be positive, got {given!r}", key="--tolerance")
+        if not 0 < given < math.inf:
+            raise InputError(f"a tolerance must be a positive finite number, got {given!r}",
+                             key="--tolerance")
         return given
     if mech.quiz.tolerance is not None:
         return mech.quiz.tolerance

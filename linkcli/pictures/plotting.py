@@ -33,20 +33,27 @@ MAX_FRAMES = 2000           # an animation's frames: a GIF of 2000 frames is ~3 
 
 
 # --- command-line requests -----------------------------------------------------------------
-def parse_sweep(text: str) -> np.ndarray:
-    """'FROM:TO:STEPS' -> STEPS + 1 driver values FROM + i (TO - FROM) / STEPS (display units)."""
+# what FROM:TO:STEPS means after each option, for its messages
+SPANS = {"--sweep": "e.g. 0:360:72: driver values in the file's units, STEPS intervals",
+         "--frf": "e.g. 0:60:600: forcing frequencies Omega in the file's units.frequency, "
+                  "STEPS intervals",
+         "--free": "e.g. 0:5:2000: times in seconds from 0, STEPS intervals"}
+
+
+def parse_sweep(text: str, key: str = "--sweep") -> np.ndarray:
+    """'FROM:TO:STEPS' -> STEPS + 1 values FROM + i (TO - FROM) / STEPS (display units), the
+    text of option ``key``."""
     parts = str(text).split(":")
     try:
         if len(parts) != 3:
             raise ValueError
         start, stop, steps = float(parts[0]), float(parts[1]), int(parts[2])
     except ValueError:
-        raise InputError(f"cannot read sweep '{text}'", key="--sweep",
-                         hint="write FROM:TO:STEPS, e.g. 0:360:72: driver values in the "
-                         "file's units, STEPS intervals") from None
+        raise InputError(f"cannot read {key[2:]} '{text}'", key=key,
+                         hint=f"write FROM:TO:STEPS, {SPANS[key]}") from None
     if not (math.isfinite(start) and math.isfinite(stop)) or not 1 <= steps <= MAX_STEPS:
-        raise InputError(f"sweep '{text}': need finite FROM, TO and 1 <= STEPS <= {MAX_STEPS}",
-                         key="--sweep")
+        raise InputError(f"{key[2:]} '{text}': need finite FROM, TO and 1 <= STEPS <= "
+                         f"{MAX_STEPS}", key=key)
     return start + np.arange(steps + 1) * ((stop - start) / steps)
 
 
@@ -206,7 +213,7 @@ def _tell(issues, notify=None):
             except (OSError, ValueError):
                 pass
     for issue in issues:
-        notify(issue.text())
+        notify(issue if isinstance(issue, str) else issue.text())
 
 
 def _panel(ax, mech, q, result, name, color):

@@ -292,3 +292,54 @@ def test_k_as_a_parameter_says_it_is_the_matricola_digit():
     code, out, err = run(["validate", "-"], stdin=FOURBAR + "params: {k: 3}\n")
     assert code == 2
     assert "key 'params.k'" in out and "matricola" in out
+
+
+# --- display ----------------------------------------------------------------------------------
+VIB = os.path.join(ROOT, "mechanisms", "polimi-2001-07-04-vibration.yaml")
+
+
+def test_the_values_column_holds_values_of_thousands_at_many_decimals():
+    code, out, err = run(["solve", VIB, "--decimals", "8"])
+    assert code == 0, err
+    rows = [line for line in out.splitlines() if " = " in line]
+    assert any(len(line.split(" = ")[1].split()[0]) > 10 for line in rows)   # k_red 11833.9...
+    ends = {line.index(" = ") + 3 + len(line.split(" = ")[1].split()[0]) +
+            (len(line.split(" = ")[1]) - len(line.split(" = ")[1].lstrip())) for line in rows}
+    assert len(ends) == 1, out               # every value ends in one column
+
+
+def test_a_unitless_value_has_no_trailing_space():
+    code, out, err = run(["solve", VIB])
+    assert code == 0, err
+    assert [line for line in out.splitlines() if line != line.rstrip()] == []
+    assert any(line.strip().startswith("zeta") for line in out.splitlines())
+
+
+def test_the_dynamics_heading_says_gravity_only_with_gravity():
+    code, out, _ = run(["solve", os.path.join(DATA, "gravity-off-quoted.yaml")])
+    assert code == 0 and "Dynamics (virtual work with inertia)" in out and "gravity" not in out
+    code, out, _ = run(["solve", os.path.join(ROOT, "mechanisms",
+                                              "fourbar-inverse-dynamics.yaml")])
+    assert code == 0 and "with inertia and gravity" in out
+
+
+def test_rounding_noise_of_a_zero_is_printed_as_zero():
+    """The scale is the largest value of the same unit on the sheet; a value under 1e-12 of
+    it is 0 in every format.  A value alone in its unit keeps its value."""
+    import json
+    from linkcli.answers.formats import render
+    from linkcli.answers.sheet import evaluate
+    from linkcli.api import load
+    result = evaluate(load(VIB).model)
+    result.values["N"] = -5.55e-15                   # the zero spring force, with noise
+    result.values["Ft"] = 607.35                     # N, its scale
+    result.values["zeta"] = 3e-15                    # alone in its unit: kept
+    for form in ("exam", "table", "csv"):
+        text = render(result, form, 12)
+        assert "e-15" not in text.replace("3e-15", "") and "-0.0" not in text, text
+    data = json.loads(render(result, "json"))["values"]
+    assert data["N"] == 0.0 and data["Ft"] == 607.35 and data["zeta"] == 3e-15
+    code, out, _ = run(["solve", os.path.join(ROOT, "mechanisms",
+                                              "khurmi-15-7-engine-forces.yaml"), "--format",
+                        "json"])
+    assert json.loads(out)["points"]["A"][1] == 0.0    # 3.7e-14 mm beside 1144 mm

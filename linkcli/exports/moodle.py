@@ -29,7 +29,8 @@ from fractions import Fraction
 
 import numpy as np
 
-from linkcli.answers.formats import HEADINGS, fmt
+from linkcli.answers.formats import fmt
+from linkcli.answers.formats import heading as section_heading
 from linkcli.answers.quantities import report_names
 from linkcli.answers.sheet import evaluate
 from linkcli.errors import InputError, LinkcliError, SolveError
@@ -106,7 +107,6 @@ def data_lines(mech) -> list[str]:
 
 
 def question_html(mech, result, decimals, tolerance, box_weights, lang, figure_name):
-    words = HEADINGS[lang]
     parts = [f"<p><b>{text(mech.title)}</b></p>"]
     if mech.statement:
         parts += [f"<p>{text(p.strip())}</p>" for p in mech.statement.split("\n\n") if p.strip()]
@@ -120,8 +120,7 @@ def question_html(mech, result, decimals, tolerance, box_weights, lang, figure_n
         names = mech.report.get(section) or []
         if not names:
             continue
-        heading = words["dynamics" if section == "statics" and mech.dynamics is not None
-                       and mech.elements is None else section]
+        heading = section_heading(mech, section, lang)
         rows = []
         for name in names:
             value = float(np.asarray(result.values[name]).reshape(-1)[0])

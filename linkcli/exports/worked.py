@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.answers.explain import explain
-from linkcli.answers.formats import HEADINGS, fmt
+from linkcli.answers.formats import fmt, heading
 from linkcli.answers.sheet import evaluate
 from linkcli.exports.text import fence, markdown, refuse_unfit, visible
 from linkcli.input.document import build
@@ -86,15 +86,13 @@ def blocks(mech, lang="en", figure=True) -> list:
     if mech.elements is None:
         out += _kinematics(mech, w)
     out.append(Block("heading", w["results"]))
-    headings = HEADINGS[lang]
     decimals = mech.report.get("decimals", 1)
     for section in REPORT_SECTIONS:
         names = mech.report.get(section) or []
         if names:
             rows = [[n, fmt(np.ravel(result.values[n])[0], decimals), result.units[n]]
                     for n in names]
-            title = headings["dynamics" if section == "statics" and mech.dynamics is not None
-                             and mech.elements is None else section]
+            title = heading(mech, section, lang)
             out.append(Block("table", rows, [title, w["value"], w["unit"]]))
     if figure:
         from linkcli.exports.figure import figure_bytes

@@ -343,3 +343,41 @@ def test_rounding_noise_of_a_zero_is_printed_as_zero():
                                               "khurmi-15-7-engine-forces.yaml"), "--format",
                         "json"])
     assert json.loads(out)["points"]["A"][1] == 0.0    # 3.7e-14 mm beside 1144 mm
+
+
+# --- pictures -------------------------------------------------------------------------------
+SHIPPED = sorted(f for f in os.listdir(os.path.join(ROOT, "mechanisms")) if f.endswith(".yaml"))
+
+
+@pytest.mark.parametrize("name", SHIPPED)
+def test_draw_labels_do_not_overlap(name):
+    """The labels' bounding boxes, measured on the rendered figure (pixels), are pairwise
+    apart and inside the axes."""
+    from linkcli.api import load
+    from linkcli.errors import StructureError
+    from linkcli.pictures.drawing import label_boxes
+    from linkcli.pictures.plotting import drawn
+    mech = load(os.path.join(ROOT, "mechanisms", name)).model
+    try:
+        fig = drawn(mech)
+    except StructureError as exc:       # a class-III group: draw solves the closed form
+        assert exc.exit_code == 3 and "class-III" in str(exc)
+        pytest.skip("draw refuses a class-III group")
+    ax = fig.axes[0]
+    frame = ax.get_window_extent(fig.canvas.get_renderer())
+    boxes = label_boxes(ax)
+    assert len(boxes) >= 3
+    for i, (text, box) in enumerate(boxes):
+        assert frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0 \
+            and box.y1 <= frame.y1, text.get_text()
+        clash = [other.get_text() for other, b in boxes[:i] if b.overlaps(box)]
+        assert clash == [], f"{text.get_text()!r} over {clash}"
+
+
+def test_draw_names_a_pendulum_s_angle_as_solve_does():
+    """theta: {angle: [O, B]} of a hanging rod: solve's convention, 270 deg, not 90."""
+    from linkcli.api import load
+    from linkcli.pictures.plotting import drawn
+    fig = drawn(load(os.path.join(ROOT, "mechanisms", "vib-hibbeler-22-12-rod.yaml")).model)
+    texts = [t.get_text() for t in fig.axes[0].texts]
+    assert "θ = 270.0°" in texts and not any(t.endswith("= 90.0°") for t in texts), texts

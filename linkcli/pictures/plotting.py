@@ -21,7 +21,7 @@ from linkcli.answers.sweep import listing
 from linkcli.answers.sheet import evaluate
 from linkcli.pictures.drawing import (COLORS, draw_elements, draw_loads, draw_masses,
                                       draw_mechanism, draw_polygon, figure)
-from linkcli.pictures.drawing import set_limits
+from linkcli.pictures.drawing import place_labels, set_limits
 from linkcli.errors import InputError
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import split_rate
@@ -264,6 +264,11 @@ def _axes_text(ax, scene, title, fontsize):
 def draw(mech, output: str, dpi: int = 100) -> None:
     """The mechanism at the file's driver value, with its vector polygon and loads."""
     check_output(output, IMAGE_FORMATS)
+    _save_figure(drawn(mech, dpi), output)
+
+
+def drawn(mech, dpi: int = 100):
+    """The figure of ``draw``, its labels apart."""
     dyn = mech.dynamics
     kin = _positions(mech, figure_coordinates(mech))
     scene = Scene(mech, kin.pos)
@@ -283,7 +288,8 @@ def draw(mech, output: str, dpi: int = 100) -> None:
     _axes_text(ax, scene, _wrap(mech.title) + "\n" + subtitle, 10)
     ax.set_ylabel(f"y [{scene.l_unit}]")
     fig.tight_layout()
-    _save_figure(fig, output)
+    place_labels(ax)
+    return fig
 
 
 def figure_coordinates(mech):

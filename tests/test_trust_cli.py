@@ -381,3 +381,85 @@ def test_draw_names_a_pendulum_s_angle_as_solve_does():
     fig = drawn(load(os.path.join(ROOT, "mechanisms", "vib-hibbeler-22-12-rod.yaml")).model)
     texts = [t.get_text() for t in fig.axes[0].texts]
     assert "θ = 270.0°" in texts and not any(t.endswith("= 90.0°") for t in texts), texts
+
+
+# --- units ------------------------------------------------------------------------------------
+def _rows(text, first, last):
+    """The cells of the Markdown table rows between the lines ``first`` and ``last``."""
+    block = text[text.index(first):text.index(last)]
+    return [[cell.strip().strip("`") for cell in line.strip().strip("|").split("|")]
+            for line in block.splitlines() if line.startswith("| `")]
+
+
+def test_the_units_table_is_the_code_s():
+    """docs/schema.md lists every unit of linkcli/model/units.py with its exact factor."""
+    from linkcli.input.expressions import evaluate
+    from linkcli.model import units
+    text = open(os.path.join(ROOT, "docs", "schema.md"), encoding="utf-8").read()
+    rows = _rows(text, "<!-- units:", "<!-- end of units -->")
+    assert sorted((kind, unit) for kind, unit, _, _ in rows) == \
+        sorted((kind, unit) for kind, table in units.KINDS.items() for unit in table)
+    for kind, unit, exact, value in rows:
+        factor = units.KINDS[kind][unit]
+        assert evaluate(exact.replace("^", "**")) == pytest.approx(factor, rel=4e-16), unit
+        assert float(value.split()[0]) == pytest.approx(factor, rel=1e-11), unit
+    defaults = _rows(text, "| kind | default |", "Every unit accepted")
+    named = {k.strip().strip("`"): d.strip().strip("`").split("`")[0]
+             for kinds, given in defaults
+             for k, d in zip(kinds.split(","), given.split(","))}
+    for kind, unit in units.DEFAULTS.items():
+        assert named[kind] == unit, kind
+
+
+def test_point_masses_are_read_in_the_file_s_mass_unit():
+    """1000 g on 100 N/m is 1 kg: omega_n = 10 rad/s, as docs/dynamics.md says."""
+    from linkcli.answers.sheet import evaluate
+    text = open(os.path.join(DATA, "undamped-forced.yaml"), encoding="utf-8").read()
+    grams = linkcli_loads(text.replace("units: {length: m, angle: deg}",
+                                       "units: {length: m, angle: deg, mass: g}")
+                          .replace("masses: {P: 1}", "masses: {P: 1000}")
+                          .replace("report:\n  vibration: [X]",
+                                   "  wn: {natural_frequency: 1}\nreport:\n  vibration: [wn]"))
+    assert grams.dynamics.masses["P"] == pytest.approx(1.0, rel=1e-15)
+    assert evaluate(grams).values["wn"] == pytest.approx(10.0, rel=1e-12)
+    doc = open(os.path.join(ROOT, "docs", "dynamics.md"), encoding="utf-8").read()
+    row = next(line for line in doc.splitlines() if line.startswith("| `masses.POINT`"))
+    assert "units.mass" in row and " in kg " not in row
+
+
+def test_the_sections_table_lists_every_section():
+    from linkcli.input.document import TOP_KEYS
+    text = open(os.path.join(ROOT, "docs", "schema.md"), encoding="utf-8").read()
+    rows = _rows(text, "| section | required |", "### units")
+    listed = {name.strip().strip("`") for row in rows for name in row[0].split(",")}
+    assert listed == set(TOP_KEYS)
+
+
+def test_a_torque_on_an_actuator_and_a_driver_force_follow_docs_conventions():
+    """docs/conventions.md: a torque on an actuator has the power M omega_AB, and a length
+    driver's load Q the power Q dq/dt: Q = -M omega_AB / (dq/dt), with B on the circle
+    |B - O| = 40 mm at |B - A| = q = 130 mm (the branch of the figure)."""
+    import cmath
+    import math
+    from linkcli.answers.sheet import evaluate
+    from linkcli.api import load
+    result = evaluate(load(os.path.join(DATA, "torque-on-actuator.yaml")).model)
+    a, r, q, qdot, moment = complex(-0.1, 0.03), 0.04, 0.13, 0.01, 2.0
+    d = abs(a)      # B from the triangle O, A, B: the angle at O between OA and OB
+    gamma = math.acos((r * r + d * d - q * q) / (2 * r * d))
+    b = min((r * cmath.exp(1j * (cmath.phase(a) + s * gamma)) for s in (1, -1)),
+            key=lambda z: abs(z - complex(0.028284, 0.028284)))
+    # dq/dt = Re(conj(B - A) i w B) / q for the crank's rate w
+    w = qdot * q / (1j * b * (b - a).conjugate()).real
+    omega_ab = (1j * w * b / (b - a)).imag
+    assert result.values["Q"] == pytest.approx(-moment * omega_ab / qdot, rel=1e-9)
+
+
+def test_a_title_with_dollar_signs_is_drawn_as_text(tmp_path):
+    """matplotlib read '$...$' of a title as mathtext: an unbalanced '\\frac{' was an
+    internal error."""
+    path = tmp_path / "dollar.yaml"
+    path.write_text(FOURBAR.replace(FOURBAR.splitlines()[0],
+                                    'title: "price $\\\\frac{ and $ more"'), encoding="utf-8")
+    code, out, err = run(["draw", path, "-o", tmp_path / "d.png"])
+    assert code == 0, out + err

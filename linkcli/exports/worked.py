@@ -22,6 +22,7 @@ import numpy as np
 from linkcli.answers.explain import explain
 from linkcli.answers.formats import fmt, heading
 from linkcli.answers.sheet import evaluate
+from linkcli.answers.statement import data_lines
 from linkcli.exports.text import fence, markdown, refuse_unfit, visible
 from linkcli.input.document import build
 from linkcli.kinematics.solvers import solver_for
@@ -74,13 +75,12 @@ def document(doc, k=None, target="html", lang="en", figure=True) -> str:
 
 def blocks(mech, lang="en", figure=True) -> list:
     """The worked solution of ``mech`` (at its own digit and driver value) as blocks."""
-    from linkcli.exports.moodle import data_lines
     w = WORDS[lang]
     result = evaluate(mech)
     out = [Block("heading", mech.title)]
     if mech.statement:
         out += [Block("text", p.strip()) for p in mech.statement.split("\n\n") if p.strip()]
-    out += [Block("heading", w["data"]), Block("lines", data_lines(mech))]
+    out += [Block("heading", w["data"]), Block("lines", data_lines(mech, lang))]
     out += [Block("heading", w["structure"]),
             Block("lines", explain(mech).splitlines()[2:])]
     if mech.elements is None:

@@ -1,0 +1,294 @@
+"""The formulas of a vibration problem (``--symbolic``), as solve, explain and export
+print them.
+
+The file is read twice by the one parser: as always (the numbers of every answer)
+and with its parameters as symbols (``input.symbols``), whose model carries each
+number's formula.  From that model, ``forces.symbolic`` gives T, V, D, Lagrange's
+equations, the equilibrium, the stability conditions, the linearised M, K, R, F and
+the characteristic polynomial, and the numeric equilibrium of ``forces.vibration``
+chooses among roots or stands where no formula exists (said so).  Every parameter
+is its own symbol in SI (``l: 800`` in mm is the symbol l = 0.8 m), g is gravity,
+the coordinates are the file's (angles in rad), ``--numbers`` gives some parameters
+their numbers.
+
+An item that has no formula (a closed loop, whose position is the root of its closure
+equations) is named with the reason instead; no number is ever printed as a formula.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from linkcli.errors import InputError
+
+ITEMS = ("T", "V", "D", "equations", "equilibrium", "stability", "M", "K", "R", "F",
+         "characteristic")
+
+WORDS = {
+    "en": {"title": "Formulas", "symbols": "symbols", "coordinates": "coordinates",
+           "energies": "Kinetic energy T, potential energy V, dissipation D",
+           "equations": "Lagrange's equations (nonlinear, each = 0)",
+           "equilibrium": {"figure": "Static equilibrium: the figure",
+                           "solved": "Static equilibrium (Q = -dV/dq = 0)",
+                           "numeric": "Static equilibrium: no closed form, the numeric one"},
+           "preloads": "preloads (tension > 0) that make the figure the equilibrium",
+           "stability": "Stability: the leading principal minors of K, each > 0",
+           "linear": "Linearised about the equilibrium: M x'' + R x' + K x = F e^(i Omega t)",
+           "characteristic": "Characteristic equation det(K - omega^2 M) = 0",
+           "roots": "roots", "missing": "not available", "imposed": "imposed"},
+    "it": {"title": "Formule", "symbols": "simboli", "coordinates": "coordinate",
+           "energies": "Energia cinetica T, energia potenziale V, funzione dissipativa D",
+           "equations": "Equazioni di Lagrange (non lineari, ciascuna = 0)",
+           "equilibrium": {"figure": "Equilibrio statico: la configurazione della figura",
+                           "solved": "Equilibrio statico (Q = -dV/dq = 0)",
+                           "numeric": "Equilibrio statico: nessuna forma chiusa, quello "
+                                      "numerico"},
+           "preloads": "precarichi (trazione > 0) che rendono la figura l'equilibrio",
+           "stability": "Stabilità: i minori principali di testa di K, ciascuno > 0",
+           "linear": "Linearizzato nell'equilibrio: M x'' + R x' + K x = F e^(i Omega t)",
+           "characteristic": "Equazione caratteristica det(K - omega^2 M) = 0",
+           "roots": "radici", "missing": "non disponibile", "imposed": "imposta"},
+}
+
+
+@dataclass
+class Formulas:
+    """The formulas of one vibration file, and what could not be given (``missing``:
+    item -> reason)."""
+
+    mech: object                      # the numeric model
+    coordinates: list                 # free coordinates' names (rows of M, K, R, F)
+    imposed: list                     # imposed coordinates' names
+    units: dict                       # coordinate -> SI unit
+    symbols: dict                     # name -> SI unit (None: not told)
+    kinds: dict                       # name -> kind, for the order of factors
+    values: dict = field(default_factory=dict)       # item -> sympy object
+    how: str = ""                     # the equilibrium's: figure | solved | numeric
+    stated: dict = field(default_factory=dict)       # numeric equilibrium symbol -> value
+    preloads: dict = field(default_factory=dict)     # spring -> N formula
+    roots: list | None = None
+    missing: dict = field(default_factory=dict)
+    numbers: dict = field(default_factory=dict)      # symbol -> its value in the file (SI)
+
+    def ranking(self):
+        from linkcli.answers.notation import Ranking
+        return Ranking(self.kinds, [c.name for c in self.mech.coordinates])
+
+
+def parse_numbers(text) -> tuple:
+    """``--numbers M,L``: the names, checked later against the file's parameters."""
+    if text is None:
+        return ()
+    names = tuple(n.strip() for n in text.split(",") if n.strip())
+    if not names:
+        raise InputError("--numbers names no parameter", key="--numbers",
+                         hint="give parameter names separated by commas, e.g. --numbers M,L")
+    return names
+
+
+def formulas(doc, k=None, numbers=()) -> Formulas:
+    """The formulas of the vibration problem ``doc`` for digit ``k``."""
+    import sympy as sp
+    from linkcli.forces import symbolic as fs
+    from linkcli.forces.lagrange import Lagrangian
+    from linkcli.forces.vibration import linearise
+    from linkcli.input.document import build
+    from linkcli.input.symbols import Symbolic
+    from linkcli.kinematics.solvers import solver_for
+    from linkcli.kinematics.symbolic import NoClosedForm, Symbols
+
+    mech = build(doc, k)
+    if mech.elements is None:
+        raise InputError("--symbolic writes the formulas of a vibration problem (a file "
+                         "with coordinates)", file=mech.file, key="--symbolic",
+                         hint="a linkage's closure equations are printed by 'linkcli "
+                         "explain --symbolic'")
+    reading = Symbolic(frozenset(numbers))
+    traced = build(doc, k, reading)
+    known = set(mech.params) | {"g"}
+    unknown = [n for n in numbers if n not in known]
+    if unknown:
+        raise InputError(f"--numbers: {', '.join(unknown)} is not a parameter of the file",
+                         file=mech.file, key="--numbers",
+                         hint="parameters: " + ", ".join(sorted(known)))
+    gravity = None       # a parameter named g is the file's own: gravity is as written
+    if mech.dynamics is not None and mech.dynamics.gravity != 0 and "g" not in mech.params:
+        gravity = sp.Symbol("g", positive=True) if "g" not in numbers else None
+    values = reading.values()
+    if isinstance(gravity, sp.Symbol):
+        values[gravity] = abs(mech.dynamics.gravity)
+    s = Symbols.of(traced, reading.si(), values, gravity)
+    units = {c.name: ("rad" if c.base == "angle" else "m") for c in mech.coordinates}
+    kinds = {}
+    symbols = {}
+    for name in reading.parameters:
+        kind, unit = reading.unit(name)
+        kinds[name] = kind
+        symbols[name] = unit
+    if isinstance(gravity, sp.Symbol):
+        kinds["g"], symbols["g"] = "gravity", "m/s^2"
+    imposed = set(mech.elements.imposed)
+    out = Formulas(mech, [c.name for j, c in enumerate(mech.coordinates) if j not in imposed],
+                   [c.name for j, c in enumerate(mech.coordinates) if j in imposed],
+                   units, symbols, kinds, numbers=dict(values))
+    try:
+        lag = fs.Lagrangian(s)
+    except NoClosedForm as exc:
+        for item in ITEMS:
+            out.missing[item] = exc.detail
+        return out
+    out.values.update({"T": lag.T, "V": lag.V, "D": lag.D, "equations": lag.equations()})
+    numeric = linearise(Lagrangian(mech, solver_for(mech)))
+    eq = lag.equilibrium(numeric.eq.q)
+    out.how, out.stated, out.preloads = eq.how, eq.stated, eq.preloads
+    out.numbers.update(eq.stated)
+    for symbol, value in eq.stated.items():
+        name = symbol.name[:-2]
+        symbols[symbol.name] = units[name]
+        kinds[symbol.name] = "angle" if units[name] == "rad" else "length"
+    out.values["equilibrium"] = {q.name: v for q, v in eq.values.items()
+                                 if q.name in out.coordinates}
+    linear = lag.linear(eq)
+    out.values.update({"M": linear.M, "K": linear.K, "R": linear.R, "F": linear.F,
+                       "stability": linear.stability,
+                       "characteristic": linear.characteristic})
+    out.roots = linear.roots
+    used = set()
+    for item in ITEMS:
+        used |= {x.name for x in _free(out.values.get(item))}
+    out.symbols = {n: u for n, u in symbols.items() if n in used}
+    return out
+
+
+def _free(value) -> set:
+    if value is None:
+        return set()
+    if isinstance(value, dict):
+        return set().union(*(_free(v) for v in value.values())) if value else set()
+    if isinstance(value, (list, tuple)):
+        return set().union(*(_free(v) for v in value)) if value else set()
+    return set(value.free_symbols)
+
+
+# --- text --------------------------------------------------------------------------------
+def equation_terms(f: Formulas):
+    """Terms of an equation: accelerations, rates, the rest, the forcing in t."""
+    def key(term):
+        names = {s.name for s in term.free_symbols}
+        if any(n.endswith("_ddot") for n in names):
+            return 0
+        if any(n.endswith("_dot") for n in names):
+            return 1
+        return 3 if "t" in names else 2
+    return key
+
+
+def to_text(f: Formulas, lang="en") -> str:
+    """The formulas in exam notation."""
+    import sympy as sp
+    from linkcli.answers.notation import text
+    from linkcli.forces.symbolic import OMEGA
+    w = WORDS[lang]
+    rk = f.ranking()
+
+    def t(expr, terms=None):
+        return text(expr, rk, terms)
+
+    symbols = ", ".join(f"{n} ({u})" if u else f"{n}" for n, u in sorted(f.symbols.items()))
+    coords = ", ".join(f"{n} ({f.units[n]})" for n in f.coordinates)
+    if f.imposed:
+        coords += f"; {w['imposed']}: " + ", ".join(f"{n} ({f.units[n]})" for n in f.imposed)
+    lines = [w["title"], f"  {w['symbols']}: {symbols or '-'}", f"  {w['coordinates']}: {coords}"]
+    missing = {item: reason for item, reason in f.missing.items()}
+    if missing:
+        reasons = sorted(set(missing.values()))
+        for reason in reasons:
+            items = ", ".join(i for i in ITEMS if missing.get(i) == reason)
+            lines += ["", f"{items}: {w['missing']}: {reason}"]
+        return "\n".join(lines)
+    lines += ["", w["energies"]]
+    for item in ("T", "V", "D"):
+        lines.append(f"  {item} = {t(f.values[item])}")
+    lines += ["", w["equations"]]
+    for name, e in zip(f.coordinates, f.values["equations"]):
+        lines.append(f"  ({name}) {t(e, equation_terms(f))} = 0")
+    lines += ["", w["equilibrium"][f.how]]
+    for name, value in f.values["equilibrium"].items():
+        stated = f.stated.get(value) if isinstance(value, sp.Symbol) else None
+        shown = f"{name}_e = {stated:.10g} {f.units[name]}" if stated is not None else \
+            f"{name} = {t(value)}"
+        lines.append(f"  {shown}")
+    if f.preloads:
+        lines.append(f"  {w['preloads']}:")
+        lines += [f"    N_{n} = {t(v)}" for n, v in f.preloads.items()]
+    lines += ["", w["stability"]]
+    lines += [f"  {t(m)} > 0" for m in f.values["stability"]]
+    lines += ["", w["linear"], f"  x = [{', '.join(f.coordinates)}]"]
+    for item in ("M", "K", "R"):
+        lines += matrix_lines(item, f.values[item], t)
+    lines += matrix_lines("F", sp.Matrix(f.values["F"]), t)
+    lines += ["", w["characteristic"], f"  {t(f.values['characteristic'], _powers(OMEGA))} = 0"]
+    if f.roots is not None:
+        lines.append("  " + ", ".join(f"omega^2 = {t(r)}" for r in f.roots))
+    return "\n".join(lines)
+
+
+def _powers(symbol):
+    """Terms of a polynomial in ``symbol`` by descending power."""
+    def key(term):
+        return -sum(e for b, e in term.as_powers_dict().items() if b == symbol)
+    return key
+
+
+def matrix_lines(name, A, t) -> list:
+    """A matrix as aligned rows: M = [ a  b ] / [ c  d ]."""
+    cells = [[t(A[i, j]) for j in range(A.shape[1])] for i in range(A.shape[0])]
+    widths = [max(len(cells[i][j]) for i in range(len(cells))) for j in range(A.shape[1])]
+    out = []
+    for i, row in enumerate(cells):
+        body = "   ".join(c.ljust(widths[j]) for j, c in enumerate(row))
+        lead = f"  {name} = " if i == 0 else " " * (len(name) + 5)
+        out.append(f"{lead}[ {body} ]")
+    return out
+
+
+# --- JSON --------------------------------------------------------------------------------
+def as_dict(f: Formulas) -> dict:
+    """The formulas as strings sympy.sympify reads (with the coordinates and symbols as
+    local names: sympify(text, locals=...)), SI, rates as NAME_dot and NAME_ddot."""
+    import sympy as sp
+
+    def s(expr):
+        return sp.sstr(expr)
+
+    out = {"coordinates": list(f.coordinates), "imposed": list(f.imposed),
+           "units": {n: f.units[n] for n in f.coordinates + f.imposed},
+           "symbols": dict(sorted(f.symbols.items())), "missing": dict(f.missing)}
+    if f.missing:
+        return out
+    v = f.values
+    out.update({"T": s(v["T"]), "V": s(v["V"]), "D": s(v["D"]),
+                "M": [[s(x) for x in row] for row in v["M"].tolist()],
+                "K": [[s(x) for x in row] for row in v["K"].tolist()],
+                "R": [[s(x) for x in row] for row in v["R"].tolist()],
+                "F": [s(x) for x in v["F"]],
+                "equations": [s(e) for e in v["equations"]],
+                "stability": [s(m) for m in v["stability"]],
+                "characteristic": s(v["characteristic"]),
+                "roots": None if f.roots is None else [s(r) for r in f.roots],
+                "equilibrium": {n: s(x) for n, x in v["equilibrium"].items()},
+                "equilibrium_kind": f.how,
+                "equilibrium_values": {sym.name: val for sym, val in f.stated.items()},
+                "preloads": {n: s(x) for n, x in f.preloads.items()}})
+    return out
+
+
+def append(text, form, doc, k=None, numbers=None, lang="en") -> str:
+    """``text`` (a report in ``form``) with the formulas of ``doc``: a "symbolic" key of
+    the JSON object, else the formulas' text after it."""
+    f = formulas(doc, k, parse_numbers(numbers))
+    if form == "json":
+        import json
+        data = json.loads(text)
+        data["symbolic"] = as_dict(f)
+        return json.dumps(data, indent=2, allow_nan=True)
+    return text.rstrip("\n") + "\n\n" + to_text(f, lang)

@@ -1,0 +1,271 @@
+"""Positions of the points as formulas of the coordinates, along the solving order.
+
+The groups are the topology's: ``analyse`` of the model read with ``--symbolic``,
+whose numbers carry their formulas (``model.exact``), taken in the order the numeric
+solver takes them.  Each gives its point as a formula of the coordinates q and of
+the file's parameters, as the closed-form solver computes it:
+
+    driver-angle   P = A + L (cos q, sin q)              (-L when the vector runs P -> A)
+    driver-coord   x_P = q (or y_P = q) on the guide cross(C - B, P - B) = c
+    place          P = K + (M - N) w                      (w complex, fixed in the body)
+    roll           P = C + d (cos theta, sin theta),  theta = theta_0 + sum c_k (mu_k - mu_k0)
+
+with mu_k the rolling contact's measures (``closed_form.rolling_terms``) and the
+_0 values those of the figure.  A dyad (RRR, RRP, PRR, PRP, RPR, RPP) closes a loop:
+its point is a root of closure equations whose solution in the parameters is no
+formula worth printing, so it is refused by name (:class:`NoClosedForm`); its
+closure equations in complex form are ``answers.symbolic``'s.
+
+Points are pairs (x, y) of sympy expressions; angles of vectors are found as
+rho (cos phi, sin phi) with rho free of the coordinates when the vector is one
+(:func:`angle`), else atan2(y, x).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import sympy as sp
+
+from linkcli.errors import SolveError
+from linkcli.kinematics.closed_form import AngleOf, Along, rolling_terms
+from linkcli.kinematics.topology import analyse
+from linkcli.model import exact
+
+
+class NoClosedForm(SolveError):
+    """A group whose position has no formula in the parameters (a closed loop)."""
+
+    def __init__(self, detail, *, group=None, **kw):
+        super().__init__(detail, **kw)
+        self.group = group
+
+
+@dataclass
+class Symbols:
+    """The symbols of one file read with ``--symbolic``: coordinates, rates and the
+    SI symbols of the parameters, with their values (for branch choices and checks)."""
+
+    mech: object                    # the model, its numbers exact (model.exact)
+    si: dict                        # file-unit symbol -> SI expression
+    values: dict                    # SI symbol -> value (SI)
+    gravity: object = None          # the symbol g (or its number) of gravity's magnitude
+    q: list = field(default_factory=list)
+    qd: list = field(default_factory=list)
+    qdd: list = field(default_factory=list)
+    figure: dict = field(default_factory=dict)      # q symbol -> its figure value (formula)
+
+    @classmethod
+    def of(cls, mech, si, values, gravity=None):
+        out = cls(mech, si, dict(values), gravity)
+        for c in mech.coordinates:
+            q = sp.Symbol(c.name, real=True)
+            out.q.append(q)
+            out.qd.append(sp.Symbol(f"{c.name}_dot", real=True))
+            out.qdd.append(sp.Symbol(f"{c.name}_ddot", real=True))
+            out.figure[q] = out.num(c.value)
+        return out
+
+    def num(self, x):
+        """A model number (exact or plain) as an SI formula."""
+        return exact.expression(x).xreplace(self.si)
+
+    def point(self, z) -> tuple:
+        return exact.parts(self.num(z))
+
+    def at_figure(self, expr):
+        return expr.xreplace(self.figure)
+
+    def value(self, expr) -> complex:
+        """The number of ``expr`` at the parameters' values and the figure."""
+        return complex(sp.N(self.at_figure(expr).xreplace(self.values), 17))
+
+
+def add(a, b):
+    return (a[0] + b[0], a[1] + b[1])
+
+
+def sub(a, b):
+    return (a[0] - b[0], a[1] - b[1])
+
+
+def times(a, w):
+    """a w of two plane vectors as complex numbers."""
+    return (a[0] * w[0] - a[1] * w[1], a[0] * w[1] + a[1] * w[0])
+
+
+def cross(a, b):
+    return a[0] * b[1] - a[1] * b[0]
+
+
+def dot(a, b):
+    return a[0] * b[0] + a[1] * b[1]
+
+
+def length(z, s: Symbols):
+    """|z| of a vector z = (x, y): sqrt(x^2 + y^2), a square's root taken with the sign
+    its base has at the figure (|z - s| is z - s where the figure has z > s)."""
+    square = sp.factor(sp.trigsimp(sp.expand(z[0] ** 2 + z[1] ** 2)))
+    root = sp.sqrt(square)
+    return root.replace(lambda e: isinstance(e, sp.Abs),
+                        lambda e: e.args[0] * (1 if s.value(e.args[0]).real >= 0 else -1))
+
+
+def angle(z, s: Symbols, coords=()):
+    """The angle of the vector z = (x, y): phi where z = rho (cos phi, sin phi) with rho
+    free of the coordinates and phi one of the angles z's cosines and sines hold (within
+    a quarter turn), on the branch of atan2 at the figure; else atan2(y, x)."""
+    x, y = (sp.sympify(c) for c in z)
+    target = s.value(sp.atan2(y, x)).real
+    rho2 = sp.trigsimp(sp.expand(x ** 2 + y ** 2), method="fu")
+    phi = None
+    if not rho2.free_symbols & set(coords):
+        rho = sp.sqrt(rho2)
+        if not (x.free_symbols | y.free_symbols) & set(coords):
+            phi = _constant_angle(x, y, s)
+        else:
+            phi = _match(x, y, rho)
+    if phi is None:
+        return sp.atan2(y, x)
+    turns = round((target - s.value(phi).real) / (2 * sp.pi.evalf()))
+    return phi + 2 * sp.pi * turns
+
+
+def _constant_angle(x, y, s):
+    """The angle of a constant vector: along an axis exactly, else atan2."""
+    if x == 0:
+        return sp.pi / 2 if s.value(y).real > 0 else -sp.pi / 2
+    if y == 0:
+        return sp.Integer(0) if s.value(x).real > 0 else sp.pi
+    return sp.atan2(y, x)
+
+
+def _match(x, y, rho):
+    """phi with x = rho cos phi and y = rho sin phi, among the angles of x's and y's
+    cosines and sines turned by a quarter turn; a candidate that fails at a sample point
+    is dropped, one that passes is proved (the differences simplify to 0)."""
+    args = {a.args[0] for a in (x.atoms(sp.cos) | x.atoms(sp.sin) | y.atoms(sp.cos)
+                                | y.atoms(sp.sin))}
+    sample = {v: sp.Rational(7 + 3 * i, 11 + i) for i, v in
+              enumerate(sorted(x.free_symbols | y.free_symbols, key=sp.default_sort_key))}
+    for arg in sorted(args, key=sp.default_sort_key):
+        for shift in (0, sp.pi, sp.pi / 2, -sp.pi / 2):
+            phi = arg + shift
+            dx, dy = x - rho * sp.cos(phi), y - rho * sp.sin(phi)
+            if abs(complex(sp.N(dx.xreplace(sample)))) > 1e-9 or \
+                    abs(complex(sp.N(dy.xreplace(sample)))) > 1e-9:
+                continue
+            if all(_zero(d) for d in (dx, dy)):
+                return phi
+    return None
+
+
+def _zero(expr) -> bool:
+    """Whether ``expr`` simplifies to 0 (the cheap ways first)."""
+    expr = sp.expand(sp.expand_trig(expr))
+    return expr == 0 or sp.trigsimp(expr, method="fu") == 0 or sp.simplify(expr) == 0
+
+
+class Positions:
+    """Every point of the mechanism as formulas of the coordinates, group by group."""
+
+    def __init__(self, s: Symbols):
+        self.s = s
+        mech = s.mech
+        self.mech = mech
+        self.groups = analyse(mech).groups
+        self.pos = {name: s.point(z) for name, z in mech.fixed.items()}
+        self._angles = {}
+        for group in self.groups:
+            if group.point is not None:
+                self.pos[group.point] = self._position(group)
+
+    def _position(self, group):
+        s, pos, kind = self.s, self.pos, group.kind
+        if kind == "driver-angle":
+            pivot, length, reverse = group.constraints
+            q = s.q[group.coord]
+            arm = s.num(length) * (-1 if reverse else 1)
+            return add(pos[pivot], (arm * sp.cos(q), arm * sp.sin(q)))
+        if kind == "driver-coord":
+            line, coord = group.constraints
+            return self._on_line(line, coord, s.q[coord.coord])
+        if kind == "place":
+            k, m, n, w = group.place
+            return add(pos[k], times(sub(pos[m], pos[n]), s.point(w)))
+        if kind == "roll":
+            return self._roll(group)
+        raise NoClosedForm(f"{group.describe()} closes a loop: its position is a root of its "
+                           "closure equations, with no closed form in the parameters",
+                           group=group, file=self.mech.file,
+                           hint="the closure equations and the numeric answers are given")
+
+    def _on_line(self, line, coord, q):
+        """P with x_P = q (or y_P = q) and cross(C - B, P - B) = c."""
+        b, c = self.pos[line.b], self.pos[line.c]
+        d = sub(c, b)
+        value = self.s.num(line.value)
+        if coord.axis == "x":
+            return (q, b[1] + (value + d[1] * (q - b[0])) / d[0])
+        return (b[0] + (d[0] * (q - b[1]) - value) / d[1], q)
+
+    # rolling ---------------------------------------------------------------------------
+    def measure(self, term, pos=None):
+        """A rolling contact's measure mu: Re(conj(u) (P_a - P_b)) or the angle of
+        P_b - P_a."""
+        pos = self.pos if pos is None else pos
+        if isinstance(term, Along):
+            z = pos[term.a] if term.b is None else sub(pos[term.a], pos[term.b])
+            return dot(self.s.point(term.u), z)
+        assert isinstance(term, AngleOf)
+        return self.angle_of(sub(pos[term.b], pos[term.a]))
+
+    def angle_of(self, z):
+        return angle(z, self.s, self.s.q)
+
+    def _roll(self, group):
+        s = self.s
+        r = group.constraints[0]
+        body = self.mech.bodies[r.disc]
+        marker = group.point
+        arm = s.num(abs(body.local[marker] - body.local[r.center]))
+        centre = self.pos[r.center]
+        figure = {p: tuple(s.at_figure(c) for c in xy) for p, xy in self.pos.items()}
+        drawn = s.point(self.mech.moving.get(marker, self.mech.fixed.get(marker, 0j)))
+        theta = angle(sub(drawn, figure[r.center]), s)
+        for term, c in rolling_terms(r, self.mech):
+            mu = self.measure(term)
+            theta = theta + s.num(c) * (mu - s.at_figure(mu))
+        return add(centre, (arm * sp.cos(theta), arm * sp.sin(theta)))
+
+    # bodies -----------------------------------------------------------------------------
+    def body_angle(self, name):
+        """theta of body ``name`` as ``jacobian.body_angle`` measures it: the angle of its
+        axis vector less that vector's local angle (the frame's is 0)."""
+        if name in self._angles:
+            return self._angles[name]
+        from linkcli.kinematics.jacobian import body_axis
+        axis = body_axis(self.mech, name)
+        if axis is None:
+            theta = sp.Integer(0)
+        else:
+            _, (a, b), local = axis
+            theta = self.angle_of(sub(self.pos[b], self.pos[a])) - self.s.num(local)
+        self._angles[name] = theta
+        return theta
+
+    def body_point(self, name, local):
+        """The point at ``local`` of body ``name`` (``jacobian.body_point``): its origin
+        point plus the offset turned by the body's angle; on a link, from two of its points
+        (G = K + (M - K) w), which needs no angle."""
+        body = self.mech.bodies.get(name)
+        if body is not None and body.kind == "link":
+            k, m = body.points[0], body.points[1]
+            w = (local - body.local[k]) / (body.local[m] - body.local[k])
+            return add(self.pos[k], times(sub(self.pos[m], self.pos[k]), self.s.point(w)))
+        from linkcli.kinematics.jacobian import body_axis
+        origin, _, _ = body_axis(self.mech, name)
+        offset = local - (body.local[origin] if body is not None and body.kind == "block"
+                          else 0.0)
+        theta = self.body_angle(name)
+        turned = times(self.s.point(offset), (sp.cos(theta), sp.sin(theta)))
+        return add(self.pos[origin], turned)

@@ -109,6 +109,8 @@ def layout(expr, ranking: Ranking, terms=None):
         return ("number", f"{float(expr):.6g}")
     if isinstance(expr, sp.Abs):
         return ("abs", layout(expr.args[0], ranking))
+    if isinstance(expr, sp.exp):                   # e^(i alpha), as the closures write it
+        return ("power", ("symbol", "e", 0), layout(expr.args[0], ranking))
     if isinstance(expr, sp.Function):
         name = FUNCTIONS.get(expr.func.__name__, expr.func.__name__)
         return ("call", name, [layout(a, ranking) for a in expr.args])
@@ -290,7 +292,12 @@ class MathMLWriter(Writer):
         return f"<mfrac>{self.write(num)}{self.write(den)}</mfrac>"
 
     def power(self, node) -> str:
-        return f"<msup>{self.paren(node[1], ATOM)}{self.write(node[2])}</msup>"
+        base = node[1]
+        if base[0] == "call" and base[1] in ("sin", "cos", "tan"):     # cos^2(phi)
+            args = "<mo>,</mo>".join(self.write(a) for a in base[2])
+            return f"<mrow><msup><mi>{base[1]}</mi>{self.write(node[2])}</msup>" \
+                f"<mo>&#x2061;</mo>{self.wrap(args)}</mrow>"
+        return f"<msup>{self.paren(base, ATOM)}{self.write(node[2])}</msup>"
 
     def root(self, node) -> str:
         return f"<msqrt>{self.write(node[1])}</msqrt>"
@@ -304,9 +311,8 @@ class MathMLWriter(Writer):
 
     def symbol(self, node) -> str:
         name = mml_name(node[1])
-        if node[2]:
-            dots = "&#x2D9;" if node[2] == 1 else "&#xA8;"
-            return f'<mover accent="true">{name}<mo>{dots}</mo></mover>'
+        if node[2]:        # plain dots: an accent's glyph is lost over a tall letter
+            return f"<mover>{name}<mo>{'.' * node[2]}</mo></mover>"
         return name
 
     def i(self, node) -> str:
@@ -361,3 +367,51 @@ def mathml(expr, ranking: Ranking | None = None, terms=None, display=False) -> s
     body = MathMLWriter().write(layout(expr, ranking or Ranking(), terms))
     mode = ' display="block"' if display else ""
     return f'<math xmlns="http://www.w3.org/1998/Math/MathML"{mode}>{body}</math>'
+
+
+def latex_matrix(A, ranking: Ranking | None = None) -> str:
+    """A matrix (or column) in LaTeX: \\begin{bmatrix} a & b \\\\ c & d \\end{bmatrix}."""
+    rows = [" & ".join(latex(A[i, j], ranking) for j in range(A.shape[1]))
+            for i in range(A.shape[0])]
+    return "\\begin{bmatrix} " + " \\\\ ".join(rows) + " \\end{bmatrix}"
+
+
+def mathml_matrix(A, ranking: Ranking | None = None) -> str:
+    """A matrix (or column) as a MathML table of class 'matrix' (no <math> element): the
+    page draws its brackets with CSS, which needs no stretchy glyphs of a math font."""
+    writer = MathMLWriter()
+    rows = "".join("<mtr>" + "".join(
+        f"<mtd>{writer.write(layout(A[i, j], ranking or Ranking()))}</mtd>"
+        for j in range(A.shape[1])) + "</mtr>" for i in range(A.shape[0]))
+    return f'<mtable class="matrix">{rows}</mtable>'      # its brackets: the page's CSS
+
+
+def mathml_body(expr, ranking: Ranking | None = None, terms=None) -> str:
+    """``expr`` as MathML without the <math> element (to compose an equation)."""
+    return MathMLWriter().write(layout(expr, ranking or Ranking(), terms))
+
+
+def label_latex(label: str) -> str:
+    """A formula's label in LaTeX: [M] -> [M], {F} -> \\{F\\}, N_k1 -> N_{k1}."""
+    if label.startswith("{") and label.endswith("}"):
+        return "\\{" + label[1:-1] + "\\}"
+    if label.startswith("("):
+        return f"({latex_name(label[1:-1])})"
+    if label.startswith("["):
+        return label
+    base, _, sub = label.partition("_")
+    if label == "omega^2":
+        return "\\omega^{2}"
+    return f"{base}_{{{sub}}}" if sub else latex_name(label)
+
+
+def label_mathml(label: str) -> str:
+    if label == "omega^2":
+        return "<msup><mi>&#x3C9;</mi><mn>2</mn></msup>"
+    if label[:1] in "([{":
+        return f"<mrow><mo>{html.escape(label[0])}</mo>{mml_name(label[1:-1])}" \
+            f"<mo>{html.escape(label[-1])}</mo></mrow>"
+    base, _, sub = label.partition("_")
+    if sub:
+        return f"<msub><mi>{html.escape(base)}</mi><mi>{html.escape(sub)}</mi></msub>"
+    return mml_name(label)

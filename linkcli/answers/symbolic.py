@@ -31,10 +31,13 @@ WORDS = {
                            "solved": "Static equilibrium (Q = -dV/dq = 0)",
                            "numeric": "Static equilibrium: no closed form, the numeric one"},
            "preloads": "preloads (tension > 0) that make the figure the equilibrium",
-           "stability": "Stability: the leading principal minors of K, each > 0",
-           "linear": "Linearised about the equilibrium: M x'' + R x' + K x = F e^(i Omega t)",
-           "characteristic": "Characteristic equation det(K - omega^2 M) = 0",
-           "roots": "roots", "missing": "not available", "imposed": "imposed"},
+           "stability": "Stability: the leading principal minors of [K], each > 0",
+           "linear": "Linearised about the equilibrium: [M] x'' + [R] x' + [K] x = {F} "
+                     "e^(i Omega t)",
+           "characteristic": "Characteristic equation det([K] - omega^2 [M]) = 0",
+           "roots": "roots", "missing": "not available", "imposed": "imposed",
+           "closures": "Closure equations (complex numbers), in the solving order",
+           "velocities": "velocities", "accelerations": "accelerations"},
     "it": {"title": "Formule", "symbols": "simboli", "coordinates": "coordinate",
            "energies": "Energia cinetica T, energia potenziale V, funzione dissipativa D",
            "equations": "Equazioni di Lagrange (non lineari, ciascuna = 0)",
@@ -43,10 +46,13 @@ WORDS = {
                            "numeric": "Equilibrio statico: nessuna forma chiusa, quello "
                                       "numerico"},
            "preloads": "precarichi (trazione > 0) che rendono la figura l'equilibrio",
-           "stability": "Stabilità: i minori principali di testa di K, ciascuno > 0",
-           "linear": "Linearizzato nell'equilibrio: M x'' + R x' + K x = F e^(i Omega t)",
-           "characteristic": "Equazione caratteristica det(K - omega^2 M) = 0",
-           "roots": "radici", "missing": "non disponibile", "imposed": "imposta"},
+           "stability": "Stabilità: i minori principali di testa di [K], ciascuno > 0",
+           "linear": "Linearizzato nell'equilibrio: [M] x'' + [R] x' + [K] x = {F} "
+                     "e^(i Omega t)",
+           "characteristic": "Equazione caratteristica det([K] - omega^2 [M]) = 0",
+           "roots": "radici", "missing": "non disponibile", "imposed": "imposta",
+           "closures": "Equazioni di chiusura (numeri complessi), nell'ordine di soluzione",
+           "velocities": "velocità", "accelerations": "accelerazioni"},
 }
 
 
@@ -97,19 +103,16 @@ def formulas(doc, k=None, numbers=()) -> Formulas:
     from linkcli.kinematics.symbolic import NoClosedForm, Symbols
 
     mech = build(doc, k)
-    if mech.elements is None:
-        raise InputError("--symbolic writes the formulas of a vibration problem (a file "
-                         "with coordinates)", file=mech.file, key="--symbolic",
-                         hint="a linkage's closure equations are printed by 'linkcli "
-                         "explain --symbolic'")
-    reading = Symbolic(frozenset(numbers))
-    traced = build(doc, k, reading)
-    known = set(mech.params) | {"g"}
+    known = set(mech.params) | ({"g"} if mech.dynamics is not None else set())
     unknown = [n for n in numbers if n not in known]
     if unknown:
         raise InputError(f"--numbers: {', '.join(unknown)} is not a parameter of the file",
                          file=mech.file, key="--numbers",
-                         hint="parameters: " + ", ".join(sorted(known)))
+                         hint="parameters: " + (", ".join(sorted(known)) or "none"))
+    reading = Symbolic(frozenset(numbers))
+    traced = build(doc, k, reading)
+    if mech.elements is None:
+        return closures(mech, traced, reading)
     gravity = None       # a parameter named g is the file's own: gravity is as written
     if mech.dynamics is not None and mech.dynamics.gravity != 0 and "g" not in mech.params:
         gravity = sp.Symbol("g", positive=True) if "g" not in numbers else None
@@ -159,6 +162,38 @@ def formulas(doc, k=None, numbers=()) -> Formulas:
     return out
 
 
+@dataclass
+class LinkageFormulas:
+    """The closure equations of a linkage, group by group in the solving order."""
+
+    mech: object
+    closures: list                    # kinematics.symbolic.Closure
+    values: dict                      # symbol -> its formula or number (SI)
+    symbols: dict                     # parameter -> SI unit
+    kinds: dict
+
+    def ranking(self):
+        from linkcli.answers.notation import Ranking
+        return Ranking(self.kinds)
+
+
+def closures(mech, traced, reading) -> LinkageFormulas:
+    """The closures of the linkage ``traced`` (its numbers exact)."""
+    from linkcli.kinematics.symbolic import Closures, Symbols
+    s = Symbols(traced, reading.si(), reading.values())
+    found = Closures(s)
+    kinds, symbols = {}, {}
+    for name in reading.parameters:
+        kinds[name], symbols[name] = reading.unit(name)
+    used = set()
+    for c in found.closures:
+        for x in (c.left, c.right):
+            used |= {v.name for v in _free(x)}
+    used |= {v.name for v in _free(list(found.values.values()))}
+    return LinkageFormulas(mech, found.closures, found.values,
+                           {n: u for n, u in symbols.items() if n in used}, kinds)
+
+
 def _free(value) -> set:
     if value is None:
         return set()
@@ -182,53 +217,105 @@ def equation_terms(f: Formulas):
     return key
 
 
-def to_text(f: Formulas, lang="en") -> str:
-    """The formulas in exam notation."""
+@dataclass
+class Entry:
+    """One written formula: ``label``, the sympy object (expression or matrix) and how
+    it reads: 'is' (label = value), 'zero' (value = 0), 'positive' (value > 0)."""
+
+    label: str
+    value: object
+    reads: str = "is"
+    terms: object = None
+
+
+def sections(f, lang="en") -> list:
+    """[(heading, [Entry or text line])]: the formulas as every format writes them."""
     import sympy as sp
-    from linkcli.answers.notation import text
     from linkcli.forces.symbolic import OMEGA
     w = WORDS[lang]
-    rk = f.ranking()
-
-    def t(expr, terms=None):
-        return text(expr, rk, terms)
-
+    if isinstance(f, LinkageFormulas):
+        return linkage_sections(f, lang)
     symbols = ", ".join(f"{n} ({u})" if u else f"{n}" for n, u in sorted(f.symbols.items()))
     coords = ", ".join(f"{n} ({f.units[n]})" for n in f.coordinates)
     if f.imposed:
         coords += f"; {w['imposed']}: " + ", ".join(f"{n} ({f.units[n]})" for n in f.imposed)
-    lines = [w["title"], f"  {w['symbols']}: {symbols or '-'}", f"  {w['coordinates']}: {coords}"]
-    missing = {item: reason for item, reason in f.missing.items()}
-    if missing:
-        reasons = sorted(set(missing.values()))
-        for reason in reasons:
-            items = ", ".join(i for i in ITEMS if missing.get(i) == reason)
-            lines += ["", f"{items}: {w['missing']}: {reason}"]
-        return "\n".join(lines)
-    lines += ["", w["energies"]]
-    for item in ("T", "V", "D"):
-        lines.append(f"  {item} = {t(f.values[item])}")
-    lines += ["", w["equations"]]
-    for name, e in zip(f.coordinates, f.values["equations"]):
-        lines.append(f"  ({name}) {t(e, equation_terms(f))} = 0")
-    lines += ["", w["equilibrium"][f.how]]
-    for name, value in f.values["equilibrium"].items():
-        stated = f.stated.get(value) if isinstance(value, sp.Symbol) else None
-        shown = f"{name}_e = {stated:.10g} {f.units[name]}" if stated is not None else \
-            f"{name} = {t(value)}"
-        lines.append(f"  {shown}")
+    out = [(w["title"], [f"{w['symbols']}: {symbols or '-'}", f"{w['coordinates']}: {coords}"])]
+    if f.missing:
+        for reason in sorted(set(f.missing.values())):
+            items = ", ".join(i for i in ITEMS if f.missing.get(i) == reason)
+            out.append((f"{items}: {w['missing']}", [reason]))
+        return out
+    v = f.values
+    out.append((w["energies"], [Entry(item, v[item]) for item in ("T", "V", "D")]))
+    out.append((w["equations"], [Entry(f"({n})", e, "zero", equation_terms(f))
+                                 for n, e in zip(f.coordinates, v["equations"])]))
+    equilibrium = []
+    for name, value in v["equilibrium"].items():
+        if isinstance(value, sp.Symbol) and value in f.stated:
+            equilibrium.append(f"{value.name} = {f.stated[value]:.10g} {f.units[name]}")
+        else:
+            equilibrium.append(Entry(name, value))
     if f.preloads:
-        lines.append(f"  {w['preloads']}:")
-        lines += [f"    N_{n} = {t(v)}" for n, v in f.preloads.items()]
-    lines += ["", w["stability"]]
-    lines += [f"  {t(m)} > 0" for m in f.values["stability"]]
-    lines += ["", w["linear"], f"  x = [{', '.join(f.coordinates)}]"]
-    for item in ("M", "K", "R"):
-        lines += matrix_lines(item, f.values[item], t)
-    lines += matrix_lines("F", sp.Matrix(f.values["F"]), t)
-    lines += ["", w["characteristic"], f"  {t(f.values['characteristic'], _powers(OMEGA))} = 0"]
+        equilibrium.append(w["preloads"] + ":")
+        equilibrium += [Entry(f"N_{n}", x) for n, x in f.preloads.items()]
+    out.append((w["equilibrium"][f.how], equilibrium))
+    out.append((w["stability"], [Entry("", m, "positive") for m in v["stability"]]))
+    out.append((w["linear"], [f"x = {{{', '.join(f.coordinates)}}}"] +
+                [Entry(f"[{item}]", v[item]) for item in ("M", "K", "R")] +
+                [Entry("{F}", sp.Matrix(v["F"]))]))
+    characteristic = [Entry("", v["characteristic"], "zero", _powers(OMEGA))]
     if f.roots is not None:
-        lines.append("  " + ", ".join(f"omega^2 = {t(r)}" for r in f.roots))
+        characteristic += [Entry("omega^2", r) for r in f.roots]
+    out.append((w["characteristic"], characteristic))
+    return out
+
+
+def linkage_sections(f: LinkageFormulas, lang="en") -> list:
+    import sympy as sp
+    w = WORDS[lang]
+    symbols = ", ".join(f"{n} ({u})" if u else f"{n}" for n, u in sorted(f.symbols.items()))
+    out = [(w["closures"], [f"{w['symbols']}: {symbols or '-'}"] +
+            [Entry(x.name, v) for x, v in f.values.items()])]
+    for i, c in enumerate(f.closures, 1):
+        entries = []
+        if c.missing:
+            entries.append(c.missing)
+        elif c.right is None and c.left is not None:
+            entries.append(Entry("", (sp.Symbol(c.point), c.left), "equation"))
+        elif c.left is not None:
+            entries.append(Entry("", (c.left, c.right), "equation"))
+            rates = [sp.Symbol(f"{u.name}_dot") for u in c.unknowns]
+            accels = [sp.Symbol(f"{u.name}_ddot") for u in c.unknowns]
+            entries.append(Entry(w["velocities"], (c.matrix, sp.Matrix(rates), c.velocity),
+                                 "system"))
+            entries.append(Entry(w["accelerations"], (c.matrix, sp.Matrix(accels),
+                                                      c.acceleration), "system"))
+        out.append((f"{i}. {c.text}", entries))
+    return out
+
+
+def to_text(f, lang="en") -> str:
+    """The formulas in exam notation."""
+    import sympy as sp
+    from linkcli.answers.notation import text
+    rk = f.ranking()
+    lines = []
+    for i, (heading, entries) in enumerate(sections(f, lang)):
+        lines += ([""] if i else []) + [heading]
+        for e in entries:
+            if not isinstance(e, Entry):
+                lines.append(f"  {e}")
+            elif isinstance(e.value, sp.MatrixBase):
+                lines += matrix_lines(e.label, e.value, lambda x: text(x, rk))
+            elif e.reads == "equation":
+                lines.append(f"  {text(e.value[0], rk)} = {text(e.value[1], rk)}")
+            elif e.reads == "system":
+                lines += system_lines(e.label, *e.value, lambda x: text(x, rk))
+            else:
+                body = text(e.value, rk, e.terms)
+                lines.append("  " + {"is": f"{e.label} = {body}",
+                                     "zero": f"{e.label} {body} = 0".strip(),
+                                     "positive": f"{body} > 0"}[e.reads])
     return "\n".join(lines)
 
 
@@ -237,6 +324,20 @@ def _powers(symbol):
     def key(term):
         return -sum(e for b, e in term.as_powers_dict().items() if b == symbol)
     return key
+
+
+def system_lines(label, A, u, b, t) -> list:
+    """A u = b as aligned rows: [ a  b ] { u1 } = { b1 }."""
+    cells = [[t(A[i, j]) for j in range(A.shape[1])] for i in range(A.shape[0])]
+    widths = [max(len(r[j]) for r in cells) for j in range(A.shape[1])]
+    us, bs = [t(x) for x in u], [t(x) for x in b]
+    wu, wb = max(map(len, us)), max(map(len, bs))
+    out = [f"  {label}:"]
+    for i, row in enumerate(cells):
+        middle = " = " if i == len(cells) // 2 else "   "
+        out.append("    [ " + "   ".join(c.ljust(widths[j]) for j, c in enumerate(row)) +
+                   f" ] {{ {us[i].ljust(wu)} }}{middle}{{ {bs[i].ljust(wb)} }}")
+    return out
 
 
 def matrix_lines(name, A, t) -> list:
@@ -252,13 +353,28 @@ def matrix_lines(name, A, t) -> list:
 
 
 # --- JSON --------------------------------------------------------------------------------
-def as_dict(f: Formulas) -> dict:
+def as_dict(f) -> dict:
     """The formulas as strings sympy.sympify reads (with the coordinates and symbols as
     local names: sympify(text, locals=...)), SI, rates as NAME_dot and NAME_ddot."""
     import sympy as sp
 
     def s(expr):
         return sp.sstr(expr)
+
+    if isinstance(f, LinkageFormulas):
+        groups = []
+        for c in f.closures:
+            item = {"group": c.text, "missing": c.missing or None}
+            if c.left is not None:
+                item["closure"] = [s(c.left), None if c.right is None else s(c.right)]
+            if c.matrix is not None:
+                item["unknowns"] = [u.name for u in c.unknowns]
+                item["matrix"] = [[s(x) for x in row] for row in c.matrix.tolist()]
+                item["velocity"] = [s(x) for x in c.velocity]
+                item["acceleration"] = [s(x) for x in c.acceleration]
+            groups.append(item)
+        return {"symbols": dict(sorted(f.symbols.items())),
+                "values": {x.name: s(v) for x, v in f.values.items()}, "groups": groups}
 
     out = {"coordinates": list(f.coordinates), "imposed": list(f.imposed),
            "units": {n: f.units[n] for n in f.coordinates + f.imposed},

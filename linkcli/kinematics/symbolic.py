@@ -269,3 +269,231 @@ class Positions:
         theta = self.body_angle(name)
         turned = times(self.s.point(offset), (sp.cos(theta), sp.sin(theta)))
         return add(self.pos[origin], turned)
+
+
+# --- closure equations of a linkage ------------------------------------------------------
+@dataclass
+class Closure:
+    """One group's closure in complex form, ``left = right`` (sympy, e^{i angle} kept as
+    exp), its unknowns and its rate systems A u' = b (velocity) and A u'' = c
+    (acceleration); ``text`` says what the group is, ``missing`` why a group has none."""
+
+    text: str
+    left: object = None
+    right: object = None
+    unknowns: list = field(default_factory=list)
+    matrix: object = None
+    velocity: object = None
+    acceleration: object = None
+    missing: str = ""
+    point: str = ""             # the point a driver places (left: its position)
+
+
+class Closures:
+    """The closure equations of a linkage's groups in the solving order, with symbols
+    for its lengths and angles (the seed's a e^{i alpha} + b e^{i beta} = c e^{i gamma}).
+
+    A link's length is its formula where the file gives one in parameters, else the
+    symbol l_XY; a vector's angle is named by the report's quantity of that angle (else
+    theta_XY), a slider's abscissa along its guide by the report's x or y of the point
+    when the guide runs along that axis (else s_P), a fixed guide's angle gamma (gamma_S
+    with several).  The rate systems come from d/dt (right - left) = 0, its real and
+    imaginary parts, the unknown rates on the left: the seed's matrix
+    [[cos gamma, b sin beta], [sin gamma, -b cos beta]] [c', beta']^T = ...
+    """
+
+    def __init__(self, s: Symbols):
+        self.s = s
+        self.mech = s.mech
+        self.groups = analyse(self.mech).groups
+        self.pos = {n: self._fixed(z) for n, z in self.mech.fixed.items()}
+        self.varying = []          # symbols that move: the driver's, then each unknown
+        self.values = {}           # symbol -> its formula or number (SI)
+        guides = [b for b in self.mech.bodies.values() if b.kind == "block"
+                  and b.guide.carrier == "frame"]
+        self.one_guide = len({(g.guide.b, g.guide.c) for g in guides}) == 1
+        self.closures = [self._group(g) for g in self.groups]
+
+    def _fixed(self, z):
+        x, y = self.s.point(z)
+        return x + sp.I * y
+
+    # names --------------------------------------------------------------------------------
+    def _quantities(self):
+        """The report's quantities, those the report lists first."""
+        listed = [n for names in self.mech.report.values() if isinstance(names, list)
+                  for n in names]
+        return sorted(self.mech.quantities.values(),
+                      key=lambda q: listed.index(q.name) if q.name in listed else len(listed))
+
+    def _angle_symbol(self, a, b):
+        """(symbol, sign): the report's angle of a->b (sign 1) or of b->a (-1), else
+        theta_ab."""
+        for q in self._quantities():
+            if q.kind == "angle" and (q.a, q.b) == (a, b):
+                return sp.Symbol(q.name, real=True), 1
+            if q.kind == "angle" and (q.a, q.b) == (b, a):
+                return sp.Symbol(q.name, real=True), -1
+        return sp.Symbol(f"theta_{a}{b}", real=True), 1
+
+    def _length(self, body, a, b):
+        local = self.mech.bodies[body].local
+        value = self.s.num(abs(local[b] - local[a]))
+        if value.free_symbols:
+            return value
+        symbol = sp.Symbol(f"l_{a}{b}", positive=True)
+        self.values[symbol] = value
+        return symbol
+
+    def _guide(self, line):
+        """(point G, angle symbol gamma, offset e) of a fixed guide cross(C - B, P - B) = c:
+        P = G + s e^{i gamma} + i e e^{i gamma}."""
+        block = self.mech.bodies[line.body]
+        name = "gamma" if self.one_guide else f"gamma_{block.name}"
+        gamma = sp.Symbol(name, real=True)
+        b, c = self.pos[line.b], self.pos[line.c]
+        d = sp.expand(c - b)
+        self.values[gamma] = angle(exact.parts(d), self.s)
+        e = sp.simplify(self.s.num(line.value) / sp.sqrt(sp.expand(d * sp.conjugate(d))))
+        return b, gamma, e
+
+    def _abscissa(self, point, gamma_value):
+        axis = {0: "x", sp.pi / 2: "y"}.get(gamma_value)
+        for q in self._quantities():
+            if axis and q.kind == axis and q.a == point:
+                return sp.Symbol(q.name, real=True)
+        return sp.Symbol(f"s_{point}", real=True)
+
+    # groups -------------------------------------------------------------------------------
+    def _group(self, group) -> Closure:
+        kind = group.kind
+        text = group.describe()
+        if kind == "driver-angle":
+            pivot, length, reverse = group.constraints
+            crank = group.bodies[0]
+            d = self.mech.coordinates[group.coord]
+            q, sign = self._angle_symbol(d.a, d.b)
+            L = self._length(crank, d.a, d.b)
+            other = d.b if pivot == d.a else d.a
+            step = sign * L * sp.exp(sp.I * q)
+            self.pos[other] = self.pos[pivot] + (step if pivot == d.a else -step)
+            self.varying.append(q)
+            return Closure(text, self.pos[other], None, point=other)
+        if kind == "place":
+            k, m, n, w = group.place
+            self.pos[group.point] = self.pos[k] + (self.pos[m] - self.pos[n]) * \
+                self._fixed(w)
+            return Closure(text)
+        if kind in ("RRR", "RRP", "PRR", "PRP", "RPR-actuator"):
+            return self._dyad(group, text)
+        if kind == "RPR" and not group.point.startswith("~"):
+            return self._slotted(group, text)
+        return Closure(text, missing="no closure equation is written for this group "
+                       f"({kind}): see its numbers in the worked solution")
+
+    def _arm(self, dist):
+        """(vector A -> P as length e^{i angle}, the angle symbol) of a Dist constraint."""
+        symbol, sign = self._angle_symbol(dist.a, dist.p)
+        if dist.length is None:                 # a driven length: the driver
+            length = self._driven(dist.a, dist.p)
+        else:
+            length = self._length(dist.body, dist.a, dist.p)
+        return sign * length * sp.exp(sp.I * symbol), symbol
+
+    def _driven(self, a, b):
+        """The symbol of a driving length |b - a|: the report's, else l_ab; it varies."""
+        found = next((q.name for q in self._quantities() if q.kind == "length"
+                      and {q.a, q.b} == {a, b}), f"l_{a}{b}")
+        symbol = sp.Symbol(found, positive=True)
+        if symbol not in self.varying:
+            self.varying.insert(0, symbol)
+        return symbol
+
+    def _slide(self, line):
+        if line.b not in self.mech.fixed or line.c not in self.mech.fixed:
+            return None
+        g, gamma, e = self._guide(line)
+        s = self._abscissa(line.p, self.values[gamma])
+        return g + (s + sp.I * e) * sp.exp(sp.I * gamma), s
+
+    def _dyad(self, group, text) -> Closure:
+        kind = group.kind
+        if kind == "RPR-actuator":
+            act = self.mech.actuators[group.bodies[0]]
+            d = sp.Symbol(f"l_{act.a}{act.b}", positive=True)
+            theta, _ = self._angle_symbol(act.a, act.b)
+            return self._close(text, self.pos[act.b] - self.pos[act.a], d * sp.exp(sp.I * theta),
+                               [d, theta], None)
+        c1, c2 = group.constraints
+        if kind == "RRR":
+            (v1, t1), (v2, t2) = self._arm(c1), self._arm(c2)
+            left, right = self.pos[c1.a] + v1, self.pos[c2.a] + v2
+            return self._close(text, left, right, [t1, t2], (group.point, left))
+        if kind in ("RRP", "PRR"):
+            dist, line = (c1, c2) if kind == "RRP" else (c2, c1)
+            slide = self._slide(line)
+            if slide is None:
+                return Closure(text, missing="the guide moves: its closure is not written")
+            v, t = self._arm(dist)
+            left = self.pos[dist.a] + v
+            return self._close(text, left, slide[0], [slide[1], t], (group.point, left))
+        one, two = self._slide(c1), self._slide(c2)
+        if one is None or two is None:
+            return Closure(text, missing="a guide moves: its closure is not written")
+        return self._close(text, one[0], two[0], [one[1], two[1]], (group.point, one[0]))
+
+    def _slotted(self, group, text) -> Closure:
+        """A link pivoted at B with a slot along B -> C, a known pin A in it:
+        A = B + (s + i e) e^{i theta}, s the pin's abscissa along the slot."""
+        dist, line = group.constraints
+        theta, sign = self._angle_symbol(dist.a, dist.p)
+        length = self._length(dist.body, dist.a, dist.p)
+        s = sp.Symbol(f"s_{line.p}", real=True)
+        e = sp.simplify(self.s.num(line.value) / length)
+        pivot = self.pos[dist.a]
+        turn = sign * sp.exp(sp.I * theta)
+        closure = self._close(text, self.pos[line.p], pivot + (s + sp.I * e) * turn, [s, theta],
+                              (dist.p, pivot + length * turn))
+        return closure
+
+    def _close(self, text, left, right, unknowns, placed) -> Closure:
+        """The closure left = right and its rate systems in ``unknowns``."""
+        if placed is not None:
+            self.pos[placed[0]] = placed[1]
+        zero = right - left
+        rates = self._rates(zero, 1, unknowns)
+        A = sp.Matrix(2, 2, lambda i, j: sp.diff(_part(rates, i), _dot(unknowns[j], 1)))
+        velocity = sp.Matrix([-(_part(rates, i) - sum(A[i, j] * _dot(unknowns[j], 1)
+                                                      for j in range(2))) for i in range(2)])
+        second = self._rates(zero, 2, unknowns)
+        acceleration = sp.Matrix([-(_part(second, i) - sum(A[i, j] * _dot(unknowns[j], 2)
+                                                           for j in range(2)))
+                                  for i in range(2)])
+        closure = Closure(text, left, right, list(unknowns), A.applyfunc(sp.simplify),
+                          velocity.applyfunc(_tidy), acceleration.applyfunc(_tidy))
+        self.varying += list(unknowns)
+        return closure
+
+    def _rates(self, expr, order, unknowns=()):
+        """d/dt of ``expr`` (order 1), or d2/dt2 (order 2), the varying symbols' rates as
+        symbols NAME_dot and NAME_ddot."""
+        varying = self.varying + list(unknowns)
+        out = expr
+        for _ in range(order):
+            out = sum((sp.diff(out, v) * _dot(v, 1) + sp.diff(out, _dot(v, 1)) * _dot(v, 2)
+                       for v in varying), sp.Integer(0))
+        return out
+
+
+def _dot(symbol, order):
+    return sp.Symbol(f"{symbol.name}_{'d' * order}ot", real=True)
+
+
+def _part(expr, i):
+    """Real (0) or imaginary (1) part of an expression in real symbols."""
+    return sp.expand_complex(expr).as_real_imag()[i]
+
+
+def _tidy(expr):
+    return sp.collect(sp.expand(sp.simplify(expr)), [s for s in expr.free_symbols
+                                                     if s.name.endswith("dot")])

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import linkcli
-from linkcli.answers import quantities
+from linkcli.answers.quantities import plan as quantities
 from linkcli.answers.quantities import Later, plan_for, report_names
 from linkcli.errors import LinkcliError
 from linkcli.kinematics import compiled
@@ -280,7 +280,7 @@ def test_the_loops_points_are_the_solvers(path):
     solvable = answered = 0
     for q in _driver_values(mech, 24, seed=2) * mech.units.display(base, 0)[1]:
         try:
-            kin = quantities._solved(solver, 2, np.array([q]), rate, accel)
+            kin = quantities.solved(solver, 2, np.array([q]), rate, accel)
         except LinkcliError:
             kin = None
         table = np.zeros((len(rows), 1))

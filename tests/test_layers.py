@@ -151,7 +151,7 @@ def _fake_package(tmp_path, files: dict) -> str:
       "kinematics/topology.py": "def f():\n    from linkcli.input.source import x\n"},
      "linkcli.kinematics.topology -> linkcli.input.source"),
     # forces importing answers with a relative import
-    ({"__init__.py": "", "answers/__init__.py": "", "answers/quantities.py": "",
+    ({"__init__.py": "", "answers/__init__.py": "", "answers/quantities/__init__.py": "",
       "forces/__init__.py": "", "forces/balance.py": "from ..answers import quantities\n"},
      "linkcli.forces.balance -> linkcli.answers.quantities"),
 ])

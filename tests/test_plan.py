@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 import linkcli
-from linkcli.answers import quantities
-from linkcli.answers.quantities import Result, plan_for, report_names
+from linkcli.answers.quantities import plan as quantities
+from linkcli.answers.quantities import TEXTBOOK, Result, plan_for, report_names
 from linkcli.errors import LinkcliError, SolveError
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import split_rate
@@ -37,7 +37,7 @@ report:
 """
 
 
-KINDS = ("q", "x", "y", "angle", "length", "load") + quantities.TEXTBOOK
+KINDS = ("q", "x", "y", "angle", "length", "load") + TEXTBOOK
 
 
 def _driven(path):
@@ -59,7 +59,7 @@ def _names(mech):
 
 
 def _each(mech, kin, names):
-    """Every name evaluated on its own by quantities._value (no plan), on ``kin``."""
+    """Every name evaluated on its own by quantities.value_of (no plan), on ``kin``."""
     kin.vectors.clear()
     return quantities._collect_each(mech, solver_for(mech), kin, names, Result(mech))
 

@@ -39,7 +39,7 @@ def explain(mech) -> str:
     if any(b.kind == "block" and _turns(mech, b.guide.carrier) for b in mech.bodies.values()):
         lines.append("  (sliders on turning guides add Coriolis terms to the accelerations)")
     if mech.elements is not None:
-        from linkcli.answers.vibration import explain_lines
+        from linkcli.answers.quantities.vibration import explain_lines
         lines += [""] + explain_lines(mech)
     elif mech.dynamics is not None:
         from linkcli.forces.balance import balance_lines

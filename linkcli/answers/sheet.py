@@ -2,7 +2,7 @@
 
 A file with a driver is solved at driver value(s) q (``answers.quantities``);
 a vibration problem, declared with coordinates, at its static equilibrium
-(``answers.vibration``).
+(``answers.quantities.vibration``).
 """
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
             from linkcli.answers import limits
             return limits.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
         return quantities.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
-    from linkcli.answers import vibration
+    from linkcli.answers.quantities import vibration
     if q is not None or qdot is not None or qddot is not None or method != "closed":
         raise InputError("a vibration problem is solved at its static equilibrium: it takes no "
                          "driver values, rates or method", file=mech.file,

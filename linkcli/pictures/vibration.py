@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from linkcli.answers.vibration import analyse
+from linkcli.answers.quantities.vibration import analyse
 from linkcli.errors import InputError, SolveError
 from linkcli.forces import vibration as vib
 from linkcli.model.units import ANGLE, FREQUENCY, LENGTH

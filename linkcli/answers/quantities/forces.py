@@ -1,0 +1,65 @@
+"""Loads and joint forces as answers: the unknown load by virtual work (with d'Alembert's
+inertia, gravity and friction where the file has masses), the force of a pin on a body and a
+slider's normal and friction forces from the Newton-Euler joint forces (N)."""
+from __future__ import annotations
+
+import numpy as np
+
+from linkcli.answers.quantities.textbook import located
+from linkcli.errors import InputError
+from linkcli.forces.statics import unknown_load
+from linkcli.model.mechanism import split_rate
+from linkcli.model.units import FORCE
+
+
+def loads_at(mech, solver, kin, names):
+    """SI values of every load, solving the unknown one when a load is asked for."""
+    wanted = any(mech.quantities.get(split_rate(n)[0]) is not None
+                 and mech.quantities[split_rate(n)[0]].kind == "load" for n in names)
+    if not wanted:
+        return {}
+    values = {n: load.value for n, load in mech.loads.items()}
+    unit_kin = solver.velocities(kin.at_rest(), np.ones_like(kin.q))
+    unknown = mech.unknown_load()
+    extra = 0.0
+    if mech.dynamics is not None:   # inertia, gravity, friction (d'Alembert)
+        from linkcli.forces.balance import dynamic_power
+        extra = dynamic_power(mech, kin, unit_kin)
+    values[unknown.name] = unknown_load(mech, kin.pos, unit_kin.vel, extra_power=extra,
+                                        q=kin.q)
+    return values
+
+
+#: the kinds of quantity that are joint forces
+JOINT_FORCES = ("reaction", "slider_force")
+
+
+def force_value(quantity, kin, context):
+    """(value, unit) of a joint force (:func:`joint_force`) in its display unit."""
+    unit = quantity.unit or context.mech.units.names["force"]
+    return joint_force(quantity, context) / FORCE[unit] + 0 * kin.q, unit
+
+
+def joint_force(quantity, context):
+    """The force of the pin on the body (a component or its magnitude), or a slider's N or
+    T, in N, from the Newton-Euler joint forces."""
+    reactions = context.reactions()
+    mech = context.mech
+    if quantity.kind == "slider_force":
+        pair = reactions.pairs[quantity.a]
+        return np.asarray(pair.normal if quantity.component == "normal" else pair.friction,
+                          dtype=float)
+    point, body = quantity.a, quantity.b
+    keys = [(point, body)] if quantity.of != "actuator" else \
+        [(point, body + ".cylinder"), (point, body + ".rod")]
+    key = next((k for k in keys if k in reactions.pins), None)
+    if key is None:
+        raise located(quantity, mech, f"no pin at {point} acts on {body}",
+                       hint="pins: " + ", ".join(f"{p} on {b}" for p, b in reactions.pins),
+                       error=InputError)
+    force = reactions.pins[key]
+    if quantity.component == "x":
+        return np.real(force)
+    if quantity.component == "y":
+        return np.imag(force)
+    return np.abs(force)

@@ -13,6 +13,7 @@ from __future__ import annotations
 import glob
 import json
 import os
+import re
 
 import numpy as np
 import pytest
@@ -143,3 +144,157 @@ def test_formulas_hold_for_other_numbers(name):
     if lin.frequency is not None:
         assert_relative(numeric(f.values["F"], values), lin.load(lin.frequency),
                         what=f"{name} F")
+
+
+# --- linkages: closure equations and rate systems ----------------------------------------
+def closures_of(name):
+    from linkcli.kinematics.symbolic import Closures, Symbols
+    reading = Symbolic()
+    mech = build(load_file(os.path.join(MECHANISMS, name)), None, reading)
+    return Closures(Symbols(mech, reading.si(), reading.values())), reading
+
+
+def test_crank_slider_closure_is_the_seeds():
+    """Seed 000, (2), (6) and (8): a e^{i alpha} + b e^{i beta} = c e^{i gamma},
+    [[cos gamma, b sin beta], [sin gamma, -b cos beta]] [c', beta']^T =
+    [-alpha' a sin alpha, alpha' a cos alpha]^T, and the accelerations' right side."""
+    found, _ = closures_of("polimi-crank-slider.yaml")
+    a, b = sp.symbols("a b", positive=True)
+    alpha, beta, c, gamma = sp.symbols("alpha beta c gamma", real=True)
+    ad, bd, add_ = sp.symbols("alpha_dot beta_dot alpha_ddot", real=True)
+    dyad = found.closures[1]
+    assert sp.simplify(dyad.left - (a * sp.exp(sp.I * alpha) + b * sp.exp(sp.I * beta))) == 0
+    assert sp.simplify(dyad.right - c * sp.exp(sp.I * gamma)) == 0
+    assert dyad.unknowns == [c, beta]
+    assert (dyad.matrix - sp.Matrix([[sp.cos(gamma), b * sp.sin(beta)],
+                                     [sp.sin(gamma), -b * sp.cos(beta)]])).is_zero_matrix
+    assert (dyad.velocity - sp.Matrix([-ad * a * sp.sin(alpha), ad * a * sp.cos(alpha)])
+            ).applyfunc(sp.simplify).is_zero_matrix
+    expected = sp.Matrix([-add_ * a * sp.sin(alpha) - ad ** 2 * a * sp.cos(alpha)
+                          - bd ** 2 * b * sp.cos(beta),
+                          add_ * a * sp.cos(alpha) - ad ** 2 * a * sp.sin(alpha)
+                          - bd ** 2 * b * sp.sin(beta)])
+    assert (dyad.acceleration - expected).applyfunc(sp.simplify).is_zero_matrix
+    assert found.values[gamma] == 0
+
+
+def _measured(meaning, kin):
+    """(value, rate, acceleration) of what a closure symbol measures, from the solver."""
+    pos, vel, acc = kin.pos, kin.vel, kin.acc
+
+    def at(d, p):
+        return complex(np.ravel(d.get(p, 0.0))[0])
+    if meaning[0] == "angle":
+        _, a, b = meaning
+        z, v, w = (at(d, b) - at(d, a) for d in (pos, vel, acc))
+        rate = v / z
+        return np.angle(z), rate.imag, (w / z - rate ** 2).imag
+    if meaning[0] == "length":
+        _, a, b = meaning
+        z, v, w = (at(d, b) - at(d, a) for d in (pos, vel, acc))
+        r = abs(z)
+        rate = (v * z.conjugate()).real / r
+        return r, rate, ((w * z.conjugate()).real + abs(v) ** 2 - rate ** 2) / r
+    _, p, g, gamma = meaning
+    turn = np.exp(-1j * float(gamma))
+    return (((at(pos, p) - complex(g)) * turn).real, (at(vel, p) * turn).real,
+            (at(acc, p) * turn).real)
+
+
+@pytest.mark.parametrize("name", ["polimi-crank-slider.yaml", "khurmi-7-1-fourbar.yaml",
+                                  "padova-2020-07.yaml", "padova-2020-02.yaml"])
+def test_closures_hold_for_the_solved_motion(name):
+    """At the file's driver value, the solver's positions, velocities and accelerations
+    satisfy every closure and its two rate systems (1e-9 of the terms' size)."""
+    found, reading = closures_of(name)
+    mech = linkcli.load(os.path.join(MECHANISMS, name)).model
+    solver = solver_for(mech)
+    d = mech.driver
+    kin = solver.positions(d.value)
+    solver.velocities(kin, d.rate)
+    solver.accelerations(kin, d.accel)
+    values = dict(reading.values())
+    values.update({k: float(v) for k, v in found.values.items()})
+    for symbol, meaning in found.meaning.items():
+        x, v, a = _measured(meaning, kin)
+        values.update({symbol: x, sp.Symbol(f"{symbol.name}_dot", real=True): v,
+                       sp.Symbol(f"{symbol.name}_ddot", real=True): a})
+    checked = 0
+    for c in found.closures:
+        if c.matrix is None:
+            continue
+        scale = max(abs(complex(sp.N(c.left.xreplace(values)))), 1e-3)
+        assert abs(complex(sp.N((c.left - c.right).xreplace(values)))) < 1e-9 * scale, c.text
+        for order, rhs in ((1, c.velocity), (2, c.acceleration)):
+            u = sp.Matrix([sp.Symbol(f"{x.name}_{'d' * order}ot", real=True) for x in c.unknowns])
+            residual = numeric(c.matrix * u - rhs, values)
+            size = np.max(np.abs(numeric(rhs, values))) + 1e-12
+            assert np.max(np.abs(residual)) < 1e-9 * max(size, 1.0), (c.text, order, residual)
+        checked += 1
+    assert checked >= 1
+
+
+# --- formats ---------------------------------------------------------------------------------
+def test_worked_solution_writes_the_formulas_as_mathml_and_latex(tmp_path):
+    """The HTML page stays one self-contained page (no script, nothing from the network)
+    and holds each formula as MathML with its LaTeX; Markdown has the LaTeX; Chromium,
+    where installed, loads it with the math in its DOM and draws a screenshot."""
+    import html as html_module
+    import shutil
+    import subprocess
+    from linkcli.exports import worked
+    name = "polimi-2001-09-18-vibration.yaml"
+    f, _ = of(name)
+    mech = f.mech
+    page = worked.to_html(worked.with_formulas(worked.blocks(mech, "en", figure=False), f))
+    assert "<script" not in page
+    assert not [u for u in re.findall(r'(?:src|href)="([^"]+)"', page)]
+    maths = re.findall(r"<math .*?</math>", page)
+    assert len(maths) >= 12
+    tex = [html_module.unescape(t) for t in re.findall(
+        r'<annotation encoding="application/x-tex">(.*?)</annotation>', page)]
+    assert "[M] = \\begin{bmatrix} 2 m L^{2} & m L^{2} \\\\ m L^{2} & m L^{2} \\end{bmatrix}" in tex
+    markdown = worked.to_markdown(worked.with_formulas(worked.blocks(mech, "en", figure=False),
+                                                       f))
+    assert "$$[M] = \\begin{bmatrix} 2 m L^{2}" in markdown
+    browser = shutil.which("chromium") or shutil.which("chromium-browser")
+    if browser is None:
+        pytest.skip("chromium is not installed (apt-get install chromium)")
+    path = tmp_path / "formulas.html"
+    path.write_text(page, encoding="utf-8")
+    flags = ["--headless", "--no-sandbox", "--disable-gpu", f"--user-data-dir={tmp_path / 'p'}"]
+    dom = subprocess.run([browser, *flags, "--dump-dom", path.as_uri()], capture_output=True,
+                         text=True, timeout=120)
+    assert dom.returncode == 0 and dom.stdout.count("<math") == len(maths)
+    shot = tmp_path / "formulas.png"
+    subprocess.run([browser, *flags, f"--screenshot={shot}", "--window-size=1100,2400",
+                    path.as_uri()], capture_output=True, timeout=120)
+    assert shot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_text_reads_as_the_exam_writes_it():
+    f, _ = of("polimi-2001-09-18-vibration.yaml")
+    from linkcli.answers.symbolic import to_text
+    text = to_text(f)
+    for line in ("  T = m L^2 phi'^2 + m L^2 phi' theta' cos(phi - theta) + m L^2 theta'^2/2",
+                 "  [M] = [ 2 m L^2   m L^2 ]",
+                 "  4 ks L^2 + 2 m g L > 0"):
+        assert line in text.splitlines()
+    assert not re.search(r"\d\.\d", text)          # exact numbers, no decimals
+
+
+def test_a_numeric_solve_does_not_import_sympy():
+    """The symbolic path only: solve and explain of a file without --symbolic start as
+    before."""
+    import subprocess
+    import sys
+    code = ("import sys, io, contextlib\nfrom linkcli.cli import main\n"
+            "with contextlib.redirect_stdout(io.StringIO()):\n"
+            "    main(['solve', 'mechanisms/padova-2020-02.yaml'])\n"
+            "    main(['solve', 'mechanisms/polimi-2001-09-18-vibration.yaml'])\n"
+            "    main(['explain', 'mechanisms/polimi-2001-09-18-vibration.yaml'])\n"
+            "print('sympy' in sys.modules)")
+    root = os.path.dirname(MECHANISMS)
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         cwd=root, check=True)
+    assert out.stdout.strip().splitlines()[-1] == "False"

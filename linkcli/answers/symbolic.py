@@ -74,6 +74,7 @@ class Formulas:
     roots: list | None = None
     missing: dict = field(default_factory=dict)
     numbers: dict = field(default_factory=dict)      # symbol -> its value in the file (SI)
+    loop: object = None               # LinkageFormulas: the closures, where a loop refuses
 
     def ranking(self):
         from linkcli.answers.notation import Ranking
@@ -106,7 +107,7 @@ def formulas(doc, k=None, numbers=()) -> Formulas:
     known = set(mech.params) | ({"g"} if mech.dynamics is not None else set())
     unknown = [n for n in numbers if n not in known]
     if unknown:
-        raise InputError(f"--numbers: {', '.join(unknown)} is not a parameter of the file",
+        raise InputError(f"{', '.join(unknown)} is not a parameter of the file",
                          file=mech.file, key="--numbers",
                          hint="parameters: " + (", ".join(sorted(known)) or "none"))
     reading = Symbolic(frozenset(numbers))
@@ -138,6 +139,7 @@ def formulas(doc, k=None, numbers=()) -> Formulas:
     except NoClosedForm as exc:
         for item in ITEMS:
             out.missing[item] = exc.detail
+        out.loop = closures(mech, traced, reading)      # what can be given: the closures
         return out
     out.values.update({"T": lag.T, "V": lag.V, "D": lag.D, "equations": lag.equations()})
     numeric = linearise(Lagrangian(mech, solver_for(mech)))
@@ -244,7 +246,7 @@ def sections(f, lang="en") -> list:
         for reason in sorted(set(f.missing.values())):
             items = ", ".join(i for i in ITEMS if f.missing.get(i) == reason)
             out.append((f"{items}: {w['missing']}", [reason]))
-        return out
+        return out + (linkage_sections(f.loop, lang) if f.loop is not None else [])
     v = f.values
     out.append((w["energies"], [Entry(item, v[item]) for item in ("T", "V", "D")]))
     out.append((w["equations"], [Entry(f"({n})", e, "zero", equation_terms(f))
@@ -380,6 +382,8 @@ def as_dict(f) -> dict:
            "units": {n: f.units[n] for n in f.coordinates + f.imposed},
            "symbols": dict(sorted(f.symbols.items())), "missing": dict(f.missing)}
     if f.missing:
+        if f.loop is not None:
+            out["closures"] = as_dict(f.loop)
         return out
     v = f.values
     out.update({"T": s(v["T"]), "V": s(v["V"]), "D": s(v["D"]),

@@ -309,6 +309,8 @@ class Closures:
         self.pos = {n: self._fixed(z) for n, z in self.mech.fixed.items()}
         self.varying = []          # symbols that move: the driver's, then each unknown
         self.values = {}           # symbol -> its formula or number (SI)
+        self.meaning = {}          # symbol -> ('angle', a, b) | ('abscissa', P, G, gamma)
+        #                            | ('length', a, b): what it measures, for checks
         guides = [b for b in self.mech.bodies.values() if b.kind == "block"
                   and b.guide.carrier == "frame"]
         self.one_guide = len({(g.guide.b, g.guide.c) for g in guides}) == 1
@@ -327,8 +329,17 @@ class Closures:
                       key=lambda q: listed.index(q.name) if q.name in listed else len(listed))
 
     def _angle_symbol(self, a, b):
-        """(symbol, sign): the report's angle of a->b (sign 1) or of b->a (-1), else
-        theta_ab."""
+        """(symbol, sign): the coordinate's or the report's angle of a->b (sign 1) or of
+        b->a (-1), else theta_ab."""
+        symbol, sign = self._named_angle(a, b)
+        self.meaning[symbol] = ("angle", a, b) if sign == 1 else ("angle", b, a)
+        return symbol, sign
+
+    def _named_angle(self, a, b):
+        for c in self.mech.coordinates:
+            if c.kind == "angle" and (c.a, c.b) in ((a, b), (b, a)) and len(
+                    self.mech.coordinates) + (self.mech.elements is not None) > 1:
+                return sp.Symbol(c.name, real=True), 1 if (c.a, c.b) == (a, b) else -1
         for q in self._quantities():
             if q.kind == "angle" and (q.a, q.b) == (a, b):
                 return sp.Symbol(q.name, real=True), 1
@@ -405,6 +416,7 @@ class Closures:
         found = next((q.name for q in self._quantities() if q.kind == "length"
                       and {q.a, q.b} == {a, b}), f"l_{a}{b}")
         symbol = sp.Symbol(found, positive=True)
+        self.meaning[symbol] = ("length", a, b)
         if symbol not in self.varying:
             self.varying.insert(0, symbol)
         return symbol
@@ -414,6 +426,7 @@ class Closures:
             return None
         g, gamma, e = self._guide(line)
         s = self._abscissa(line.p, self.values[gamma])
+        self.meaning[s] = ("abscissa", line.p, g, self.values[gamma])
         return g + (s + sp.I * e) * sp.exp(sp.I * gamma), s
 
     def _dyad(self, group, text) -> Closure:
@@ -421,6 +434,7 @@ class Closures:
         if kind == "RPR-actuator":
             act = self.mech.actuators[group.bodies[0]]
             d = sp.Symbol(f"l_{act.a}{act.b}", positive=True)
+            self.meaning[d] = ("length", act.a, act.b)
             theta, _ = self._angle_symbol(act.a, act.b)
             return self._close(text, self.pos[act.b] - self.pos[act.a], d * sp.exp(sp.I * theta),
                                [d, theta], None)

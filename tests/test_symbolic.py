@@ -298,3 +298,36 @@ def test_a_numeric_solve_does_not_import_sympy():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          cwd=root, check=True)
     assert out.stdout.strip().splitlines()[-1] == "False"
+
+
+TWISTED = """
+title: a pendulum on a twisted torsional spring
+units: {length: m, angle: deg}
+params: {L: 0.5, m: 2, kt: 20, th0: -60}
+frame: {O: [0, 0]}
+points: {P: [0, -L]}
+links: {rod: {points: [O, P], length: L}}
+coordinates: {th: {angle: [O, P]}}
+springs: {s: {bodies: [frame, rod], k: kt, free_angle: th0}}
+dynamics: {gravity: 9.81, masses: {P: m}}
+quantities: {w1: {natural_frequency: 1}}
+report: {vibration: [w1]}
+"""
+
+
+def test_an_equilibrium_without_closed_form_is_the_numeric_one_said_so():
+    """kt (th - th0) + m g L cos(th) = 0 has no closed form: the equilibrium stands as the
+    symbol th_e with its numeric value, the formulas keep it, and the numbers agree."""
+    from linkcli.answers.symbolic import to_text
+    from linkcli.input.source import load_text
+    doc = load_text(TWISTED, "twisted.yaml")
+    f = formulas(doc)
+    mech = build(doc)
+    lin = linearise(Lagrangian(mech, solver_for(mech)))
+    th_e = sp.Symbol("th_e", real=True)
+    assert f.how == "numeric" and f.stated == {th_e: pytest.approx(lin.eq.q[0], abs=0)}
+    assert f.values["K"][0, 0].has(th_e)
+    assert_relative(numeric(f.values["K"], f.numbers), lin.K)
+    text = to_text(f)
+    assert "Static equilibrium: no closed form, the numeric one" in text
+    assert f"  th_e = {lin.eq.q[0]:.10g} rad" in text.splitlines()

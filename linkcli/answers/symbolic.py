@@ -92,17 +92,11 @@ def parse_numbers(text) -> tuple:
     return names
 
 
-def formulas(doc, k=None, numbers=()) -> Formulas:
-    """The formulas of the vibration problem ``doc`` for digit ``k``."""
-    import sympy as sp
-    from linkcli.forces import symbolic as fs
-    from linkcli.forces.lagrange import Lagrangian
-    from linkcli.forces.vibration import linearise
+def formulas(doc, k=None, numbers=()):
+    """The formulas of ``doc`` for digit ``k``: a vibration problem's (Formulas) or a
+    linkage's closures (LinkageFormulas); ``numbers`` the parameters given numbers."""
     from linkcli.input.document import build
     from linkcli.input.symbols import Symbolic
-    from linkcli.kinematics.solvers import solver_for
-    from linkcli.kinematics.symbolic import NoClosedForm, Symbols
-
     mech = build(doc, k)
     known = set(mech.params) | ({"g"} if mech.dynamics is not None else set())
     unknown = [n for n in numbers if n not in known]
@@ -114,42 +108,71 @@ def formulas(doc, k=None, numbers=()) -> Formulas:
     traced = build(doc, k, reading)
     if mech.elements is None:
         return closures(mech, traced, reading)
-    gravity = None       # a parameter named g is the file's own: gravity is as written
-    if mech.dynamics is not None and mech.dynamics.gravity != 0 and "g" not in mech.params:
-        gravity = sp.Symbol("g", positive=True) if "g" not in numbers else None
+    return vibration(mech, traced, reading, numbers)
+
+
+def _gravity(mech, numbers):
+    """The symbol g of gravity's magnitude; None where it is a number (``--numbers g``, no
+    gravity) or a parameter named g is the file's own (gravity is then as written)."""
+    import sympy as sp
+    if mech.dynamics is None or mech.dynamics.gravity == 0 or "g" in mech.params \
+            or "g" in numbers:
+        return None
+    return sp.Symbol("g", positive=True)
+
+
+def _table(reading, gravity) -> tuple:
+    """({name: kind}, {name: SI unit}) of the parameters, and of g."""
+    kinds, units = {}, {}
+    for name in reading.parameters:
+        kinds[name], units[name] = reading.unit(name)
+    if gravity is not None:
+        kinds["g"], units["g"] = "gravity", "m/s^2"
+    return kinds, units
+
+
+def vibration(mech, traced, reading, numbers=()) -> Formulas:
+    """The formulas of the vibration problem ``traced`` (``mech`` its numeric model)."""
+    from linkcli.forces import symbolic as fs
+    from linkcli.kinematics.symbolic import NoClosedForm, Symbols
+    gravity = _gravity(mech, numbers)
     values = reading.values()
-    if isinstance(gravity, sp.Symbol):
+    if gravity is not None:
         values[gravity] = abs(mech.dynamics.gravity)
     s = Symbols.of(traced, reading.si(), values, gravity)
-    units = {c.name: ("rad" if c.base == "angle" else "m") for c in mech.coordinates}
-    kinds = {}
-    symbols = {}
-    for name in reading.parameters:
-        kind, unit = reading.unit(name)
-        kinds[name] = kind
-        symbols[name] = unit
-    if isinstance(gravity, sp.Symbol):
-        kinds["g"], symbols["g"] = "gravity", "m/s^2"
+    kinds, symbols = _table(reading, gravity)
     imposed = set(mech.elements.imposed)
     out = Formulas(mech, [c.name for j, c in enumerate(mech.coordinates) if j not in imposed],
                    [c.name for j, c in enumerate(mech.coordinates) if j in imposed],
-                   units, symbols, kinds, numbers=dict(values))
+                   {c.name: ("rad" if c.base == "angle" else "m") for c in mech.coordinates},
+                   symbols, kinds, numbers=dict(values))
     try:
         lag = fs.Lagrangian(s)
     except NoClosedForm as exc:
-        for item in ITEMS:
-            out.missing[item] = exc.detail
+        out.missing = {item: exc.detail for item in ITEMS}
         out.loop = closures(mech, traced, reading)      # what can be given: the closures
         return out
+    _linearised(out, lag)
+    used = set().union(*({x.name for x in _free(out.values.get(item))} for item in ITEMS))
+    out.symbols = {n: u for n, u in out.symbols.items() if n in used}
+    return out
+
+
+def _linearised(out: Formulas, lag) -> None:
+    """Fill ``out`` from ``lag``: energies, equations, equilibrium, the linear system."""
+    from linkcli.forces.lagrange import Lagrangian
+    from linkcli.forces.vibration import linearise
+    from linkcli.kinematics.solvers import solver_for
+    mech = out.mech
     out.values.update({"T": lag.T, "V": lag.V, "D": lag.D, "equations": lag.equations()})
     numeric = linearise(Lagrangian(mech, solver_for(mech)))
     eq = lag.equilibrium(numeric.eq.q)
     out.how, out.stated, out.preloads = eq.how, eq.stated, eq.preloads
     out.numbers.update(eq.stated)
-    for symbol, value in eq.stated.items():
-        name = symbol.name[:-2]
-        symbols[symbol.name] = units[name]
-        kinds[symbol.name] = "angle" if units[name] == "rad" else "length"
+    for symbol in eq.stated:
+        unit = out.units[symbol.name[:-2]]
+        out.symbols[symbol.name] = unit
+        out.kinds[symbol.name] = "angle" if unit == "rad" else "length"
     out.values["equilibrium"] = {q.name: v for q, v in eq.values.items()
                                  if q.name in out.coordinates}
     linear = lag.linear(eq)
@@ -157,11 +180,6 @@ def formulas(doc, k=None, numbers=()) -> Formulas:
                        "stability": linear.stability,
                        "characteristic": linear.characteristic})
     out.roots = linear.roots
-    used = set()
-    for item in ITEMS:
-        used |= {x.name for x in _free(out.values.get(item))}
-    out.symbols = {n: u for n, u in symbols.items() if n in used}
-    return out
 
 
 @dataclass
@@ -184,9 +202,7 @@ def closures(mech, traced, reading) -> LinkageFormulas:
     from linkcli.kinematics.symbolic import Closures, Symbols
     s = Symbols(traced, reading.si(), reading.values())
     found = Closures(s)
-    kinds, symbols = {}, {}
-    for name in reading.parameters:
-        kinds[name], symbols[name] = reading.unit(name)
+    kinds, symbols = _table(reading, None)
     used = set()
     for c in found.closures:
         for x in (c.left, c.right):

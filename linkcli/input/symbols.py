@@ -95,10 +95,11 @@ class Symbolic:
     def param(self, name: str, number):
         """The exact number ``name`` is bound to, from its read value ``number``."""
         import sympy as sp
+        if name in self.numbers:            # its number, exact from the others' numbers
+            literal = {p.symbol: exact.constant(p.value) for p in self.parameters.values()}
+            return exact.Exact(float(number), exact.expression(number).xreplace(literal))
         if exact.is_traced(number) and number.expr.free_symbols:
             return number                   # an expression of other parameters
-        if name in self.numbers:
-            return exact.Exact(float(number), exact.expression(number))
         value = float(number)
         sign = {"positive": True} if value > 0 else {"negative": True} if value < 0 else \
             {"real": True}

@@ -124,13 +124,8 @@ class Lagrangian:
             theta = self.positions.body_angle(mb.body) if mb.inertia != 0 else None
             out.append((mb.body, s.num(mb.mass), s.num(mb.inertia), G, theta))
         for disc in self.dyn.discs.values():
-            guide = self.mech.bodies[disc.slider].guide
-            u = sub(s.point(self.mech.fixed[guide.c]), s.point(self.mech.fixed[guide.b]))
-            size = sp.sqrt(sp.simplify(dot(u, u)))
-            roll = dot(u, pos[disc.center]) / size
-            spin = -disc.side * roll / s.num(disc.radius)     # omega = -s (v_C . u) / R
             out.append((disc.name, s.num(disc.mass), s.num(disc.inertia), pos[disc.center],
-                        spin))
+                        self.spin(disc)))
         for p, mass in self.dyn.masses.items():
             out.append((p, s.num(mass), sp.Integer(0), pos[p], None))
         return out
@@ -155,11 +150,29 @@ class Lagrangian:
         return quadratic(M, self.s.qd)
 
     # the elements -----------------------------------------------------------------------
+    def spin(self, disc):
+        """A rolling disc's rotation theta = -s (x_C - x_C,figure) / R, x_C its centre along
+        the floor's direction u (``forces.lagrange``: 0 in the figure)."""
+        s = self.s
+        guide = self.mech.bodies[disc.slider].guide
+        u = sub(s.point(self.mech.fixed[guide.c]), s.point(self.mech.fixed[guide.b]))
+        roll = dot(u, self.positions.pos[disc.center]) / sp.sqrt(sp.simplify(dot(u, u)))
+        return -disc.side * (roll - s.at_figure(roll)) / s.num(disc.radius)
+
+    def rotation(self, name, torque=False):
+        """The rotation of body ``name`` as ``forces.lagrange`` measures it: a disc's spin
+        (for the disc, and for its slider under a ``torque``), else the body's angle."""
+        discs = self.dyn.discs if self.dyn is not None else {}
+        disc = discs.get(name)
+        if disc is None and torque and self.dyn is not None:
+            disc = self.dyn.disc_on(name)
+        return self.spin(disc) if disc is not None else self.positions.body_angle(name)
+
     def measure(self, m: el.Measure):
         """s(q) of an element: |P_b - P_a|, Re(conj(e) (P_b - P_a)) or theta_b - theta_a."""
         pos = self.positions.pos
         if m.kind == "angle":
-            return self.positions.body_angle(m.b) - self.positions.body_angle(m.a)
+            return self.rotation(m.b) - self.rotation(m.a)
         z = sub(pos[m.b], pos[m.a])
         if m.kind == "along":
             return dot(self.s.point(m.direction), z)
@@ -199,7 +212,7 @@ class Lagrangian:
             k = s.num(spring.stiffness)
             figure = s.at_figure(measure)
             if spring.mode == el.FREE:
-                free = s.num(spring.value)
+                free = s.num(spring.value) + self._turns(spring, figure)
             elif spring.mode == el.PRELOAD:
                 free = figure - s.num(spring.value) / k
             else:
@@ -220,6 +233,16 @@ class Lagrangian:
             terms.append(k * tidy(measure - free) ** 2 / 2)
         self.gradV = [sum((tidy(sp.diff(t, q)) for t in terms), sp.Integer(0)) for q in self.s.q]
         return sum(terms, sp.Integer(0))
+
+    def _turns(self, spring, figure):
+        """A torsional spring's free angle names a direction: the whole turns that put the
+        figure's deflection in [-pi, pi] (``forces.lagrange``); none on a disc."""
+        m = spring.measure
+        discs = self.dyn.discs if self.dyn is not None else {}
+        if m.kind != "angle" or m.a in discs or m.b in discs:
+            return sp.Integer(0)
+        value = self.s.value(figure - self.s.num(spring.value)).real
+        return 2 * sp.pi * round(value / (2 * float(sp.pi)))
 
     def _static_preloads(self, V, measures, names) -> dict:
         """The forces N of the 'static' springs that make the figure an equilibrium:
@@ -247,7 +270,7 @@ class Lagrangian:
         if load.kind == "force":
             return dot(self.s.point(load.direction), pos[load.target])
         if load.kind == "torque":
-            return self.positions.body_angle(load.target)
+            return self.rotation(load.target, torque=True)
         if load.kind == "axial":
             act = self.mech.actuators[load.target]
             return length(sub(pos[act.b], pos[act.a]), self.s)
@@ -262,7 +285,7 @@ class Lagrangian:
             if h.kind == "force":
                 measure = dot(s.point(h.direction), self.positions.pos[h.target])
             else:
-                measure = self.positions.body_angle(h.target)
+                measure = self.rotation(h.target, torque=True)
             phase = s.num(h.phase)
             amplitude = s.num(h.amplitude) * (sp.cos(phase) + sp.I * sp.sin(phase))
             f = [a + amplitude * g for a, g in zip(f, self.gradient(measure))]

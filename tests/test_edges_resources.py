@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import io
 import json
+import math
 import os
 import subprocess
 import sys
@@ -196,6 +197,29 @@ def test_a_branch_point_between_two_samples_is_reported(parallelogram, capsys, m
     assert code == 0
     found = _branches(err)
     assert len(found) == 1 and "branch point at q = 180 deg" in found[0], err
+
+
+#: docs/errors.md: a branch point is located to within 1e-6 rad of the toggle, either method
+BRANCH_ACCURACY = math.degrees(1e-6)
+
+
+@pytest.mark.parametrize("method", ["closed", "newton"])
+@pytest.mark.parametrize("start, stop, steps", [(0, 360, 7), (171.3, 262.9, 7), (179, 181.3, 3),
+                                                (265, 175, 9)])
+def test_a_branch_point_is_located_to_the_stated_accuracy(parallelogram, method, start, stop,
+                                                          steps):
+    """The parallelogram's change points are exactly at 0 and 180 deg (B, C, D in line).  The
+    located value must not depend on the path the solver took to the samples (Newton's
+    continuation may leave a change point on either branch, as rounding decides): it is
+    found on the conditioning, whose two branches mirror each other."""
+    from linkcli.answers import sweep as sw
+    got = sw.sweep(linkcli.load(parallelogram).model, sw.driver_values(start, stop, steps),
+                   method=method)
+    found = [i.lo for i in got.issues if i.kind == "branch"]
+    exact = [t for t in (0.0, 180.0, 360.0) if min(start, stop) <= t <= max(start, stop)]
+    assert len(found) == len(exact), got.issues
+    for q, t in zip(sorted(found), exact):
+        assert abs(q - t) <= BRANCH_ACCURACY, (q, t)
 
 
 def test_branch_points_across_block_boundaries(parallelogram):

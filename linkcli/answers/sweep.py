@@ -23,7 +23,9 @@ neighbouring samples: three samples whose middle one dips in a V; two samples
 where the angle between the constraint normals heads for 0 or 180 degrees at the
 first and comes back from it at the second (their tangents, from the rates, meet
 at or near it); for Newton, the sign of det J (the side the dyads close on)
-changing; an exact toggle at the first or the last sample.
+changing; an exact toggle at the first or the last sample.  Each one is then located
+on the conditioning itself (``kinematics.toggles.locate``), to the accuracy that module
+states, whatever path the solver took to the samples.
 """
 from __future__ import annotations
 
@@ -34,6 +36,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.errors import AtRestError, NoWorkError, AssemblyError, InputError, SolveError
+from linkcli.kinematics import toggles
 from linkcli.kinematics.closed_form import SINGULAR, Kinematics
 from linkcli.kinematics.topology import Dist, Line
 from linkcli.model.mechanism import split_rate
@@ -48,9 +51,6 @@ MAX_POSITIONS = 10 ** 7
 #: memory pages.  2^14 is also the Newton solver's batch.  benchmarks/memory.py: the peak
 #: does not grow with the sweep's length.
 BLOCK = 1 << 14
-#: a suspected toggle between two samples is sampled again REFINE times closer, ZOOMS times
-REFINE = 16
-ZOOMS = 4
 #: rows formatted at once: their text (Python strings) takes far more memory than the numbers
 LINES = 4096
 #: names listed at most in a message (then '... and N more')
@@ -257,6 +257,8 @@ class Sweeper:
         self._between: list = []         # (group index, row a, row b, Issue): between two
         self._done = False
         self._plan = None
+        #: the driver's natural size: 1 rad, or the mechanism's size (m) for a length
+        self._q_size = 1.0 if base == "angle" else _size(mech)
 
     # the blocks --------------------------------------------------------------------
     def values(self, lo: int, hi: int) -> np.ndarray:
@@ -475,11 +477,10 @@ class Sweeper:
             m, qq, rr = every["m"], every["q"], every["row"]
             if old == 0 and rr.size and rr[0] == 0 and m[0] < threshold:   # exact toggle
                 self._touch.append((index, 0, self._branch(index, qq[0], m[0])))
-            for i, qb in _touches(m, qq, rr):
-                if "theta" in every:            # closed form: looked at closely
-                    qb = self._closer(index, qq[i - 1], qq[i + 1])
-                    if qb is None:              # a smooth minimum, sampled coarsely
-                        continue
+            for i, _ in _touches(m, qq, rr):
+                qb = self._closer(index, qq[i - 1], qq[i + 1])
+                if qb is None:                  # a smooth minimum, sampled coarsely
+                    continue
                 self._touch.append((index, int(rr[i]), self._branch(index, qb, m[i])))
             pairs = np.arange(max(old - 1, 0), rr.size - 1)
             if pairs.size == 0:
@@ -492,10 +493,13 @@ class Sweeper:
                     found = self._closer(index, qq[a[j]], qq[b[j]])
                     hit[j] = found is not None
                     at[j] = at[j] if found is None else found
-            elif "sign" in every:
+            elif "sign" in every:             # the side the dyads close on changes
                 s = every["sign"]
                 hit = s[a] * s[b] < 0
                 at = qq[a] + (qq[b] - qq[a]) * m[a] / np.where(m[a] + m[b] > 0, m[a] + m[b], 1)
+                for j in np.nonzero(near & hit)[0]:     # located on the conditioning
+                    found = self._closer(index, qq[a[j]], qq[b[j]])
+                    at[j] = at[j] if found is None else found
             else:
                 continue
             for j in np.nonzero(near & hit)[0]:
@@ -504,30 +508,59 @@ class Sweeper:
                                                    min(m[a[j]], m[b[j]]))))
 
     def _closer(self, index, qa, qb):
-        """The toggle of group ``index`` between the neighbouring samples qa and qb, found by
-        sampling the interval again, REFINE times closer around the smallest measure
-        (ZOOMS times): a V whose tip has measure zero, where a smooth minimum of depth m* is
-        told apart once the samples are closer than sqrt(m*) (see _touches).  Returns the
-        interpolated q, or None: no toggle (or a gap that cannot be assembled)."""
+        """The toggle of group ``index`` between the samples qa and qb, located by zooming on
+        its conditioning to the accuracy of ``toggles.TIP`` (``toggles.locate``); None: no
+        toggle (a smooth minimum, or a gap that cannot be assembled)."""
         threshold = getattr(self.solver, "singular", SINGULAR)
-        lo, hi = float(qa), float(qb)
-        for _ in range(ZOOMS):
-            q = np.linspace(lo, hi, REFINE + 1)
-            kin = self.solver.positions(q * self.q_factor)
-            if any(np.any(np.asarray(short) > 0) for short in kin.short.values()):
+        solve = self._solve_near(qa, qb) if self.method == "newton" else self.solver.positions
+
+        def measure_at(q):
+            kin = solve(q * self.q_factor)
+            if kin is None or any(np.any(np.asarray(short) > 0) for short in kin.short.values()):
                 return None
             self.solver.velocities(kin, 1.0)
             if index not in kin.measure:
                 return None
-            m = np.array(np.broadcast_to(kin.measure[index], q.shape), dtype=float)
-            i = int(np.argmin(m))
-            if m[i] < threshold:
-                return float(q[i])
-            if i in (0, REFINE):            # smallest at an end: no V inside
+            return np.array(np.broadcast_to(kin.measure[index], q.shape), dtype=float)
+
+        return toggles.locate(measure_at, qa, qb, toggles.TIP * self._q_size / self.q_factor,
+                              threshold)
+
+    def _solve_near(self, qa, qb):
+        """Newton's positions at the driver values (SI) of a zoom, each corrected from the
+        nearer end of the zoom's interval, solved before (the first ends by one walk from the
+        file's position; a value the corrector misses from there is continued to): a zoom
+        costs one batch of corrections, not a walk, and never starts from its tip, where
+        the tangent is undefined."""
+        solver = self.solver
+        walker = solver.continuation
+        ends = np.array([qa, qb], dtype=float) * self.q_factor
+        X, ok = solver.track(ends)
+        known = {float(q): x for q, x, good in zip(ends, X, ok) if good}
+
+        def solve(qs):
+            qs = np.asarray(qs, dtype=float)
+            kq = np.array([q for q in (qs[0], qs[-1]) if float(q) in known])
+            if not kq.size:
                 return None
-            lo, hi = float(q[i - 1]), float(q[i + 1])
-        tips = _touches(m, q, np.arange(q.size))
-        return tips[0][1] if tips else None
+            kX = np.array([known[float(q)] for q in kq])
+            near = np.argmin(np.abs(qs[:, None] - kq[None, :]), axis=1)
+            kdX = solver.tangent(kX, kq)
+            X, ok = walker._predict_correct(kX[near], kdX[near], kq[near], qs)
+            for side in range(kq.size):         # the rest continued to, outwards from an end
+                missed = np.nonzero(~ok & (near == side))[0]
+                order = missed[np.argsort(np.abs(qs[missed] - kq[side]), kind="stable")]
+                if order.size:
+                    walker._chain_into((float(kq[side]), kX[side], kdX[side]), order, qs, X, ok)
+            if not ok.all():
+                return None
+            known.clear()
+            known.update(zip(qs.tolist(), X))
+            kin = Kinematics(qs)
+            kin.pos.update(solver.fixed)
+            kin.pos.update(solver._points(X, qs.shape))
+            return kin
+        return solve
 
     def _finish_branches(self):
         """An exact toggle at the last sample is a branch point too."""
@@ -607,6 +640,12 @@ def sweep(mech, q, names=None, method="closed", tol=None, qdot=None, qddot=None,
     return out
 
 
+def _size(mech) -> float:
+    """The mechanism's size: the largest distance of a figure point from the first (m)."""
+    points = list(mech.fixed.values()) + list(mech.moving.values())
+    return max((abs(p - points[0]) for p in points), default=1.0) or 1.0
+
+
 def _grad_rate(c, vel, unknown):
     """The time derivative of ``closed_form._grad(c, pos, unknown)``: the same combination
     of the velocities ``vel`` (absent points are fixed)."""
@@ -676,15 +715,18 @@ def _tangents_meet(theta, slope, q, a, b):
 
 
 def _subset(kin, mask) -> Kinematics:
-    """The rows ``mask`` of a 1-D sweep's kinematics (positions, rates, measures)."""
+    """The rows ``mask`` of a 1-D sweep's kinematics (coordinates, positions, rates,
+    measures)."""
     shape = kin.q.shape
 
     def pick(value):
         return value[mask] if np.shape(value) == shape else value
 
-    out = Kinematics(kin.q[mask])
+    out = Kinematics(kin.q[mask], coords=tuple(pick(c) for c in kin.coords))
     out.qd = None if kin.qd is None else pick(kin.qd)
     out.qdd = None if kin.qdd is None else pick(kin.qdd)
+    out.rates = tuple(pick(r) for r in kin.rates)
+    out.accels = tuple(pick(a) for a in kin.accels)
     for src, dst in ((kin.pos, out.pos), (kin.vel, out.vel), (kin.acc, out.acc),
                      (kin.short, out.short), (kin.measure, out.measure)):
         for key, value in src.items():

@@ -290,3 +290,31 @@ def test_seed_24_january_disc_in_a_guide_with_a_pendulum():
     seed_K = np.array([[2 * K * (r / (R - r)) ** 2 * (R - r) ** 2, K * r * L],
                        [K * r * L, L ** 2 / 2]])
     assert np.min(eigh(seed_K, M, eigvals_only=True)) < 0
+
+
+def _belt_chain(n):
+    """n discs in a row, each turned by an open belt from the one before (radii 100 and 50
+    mm in turn, every strand along y = 0 under them): the last one turns at r_0 / r_last
+    times the first one's rate, in the same sense."""
+    radius = [100 if i % 2 == 0 else 50 for i in range(n)]
+    lines = ['title: "belt chain"', "units: {length: mm, angle: deg}", "frame:"]
+    lines += [f"  C{i}: [{300 * i}, {radius[i]}]" for i in range(n)]
+    lines += ["points:"] + [f"  M{i}: [{300 * i}, {2 * radius[i]}]" for i in range(n)]
+    lines += ["links:"] + [f"  d{i}: {{points: [C{i}, M{i}], length: {radius[i]}}}"
+                           for i in range(n)]
+    lines += ["cords:"] + [f"  b{i}: {{pulley: d{i + 1}, radius: {radius[i + 1]}, along: -x, "
+                           f"side: left, to: {{disc: d{i}, radius: {radius[i]}, side: left}}}}"
+                           for i in range(n - 1)]
+    lines += ["driver: {angle: [C0, M0], value: 90, rate: 10}",
+              f"quantities: {{w: {{angle: [C{n - 1}, M{n - 1}]}}}}",
+              "report: {position: [w], velocity: [wdot]}"]
+    return "\n".join(lines) + "\n", radius[0] / radius[-1]
+
+
+def test_a_thousand_chained_belt_strands_are_solved():
+    """The branch search walked the groups by recursion, one level per group: 1000 strands
+    ended in an internal error (RecursionError, exit 70)."""
+    text, ratio = _belt_chain(1000)
+    got = linkcli.loads(text).solve(q=np.array([100.0, 110.0])).values
+    assert np.allclose(got["w"], 90 + np.array([10.0, 20.0]) * ratio, rtol=0, atol=1e-9)
+    assert np.allclose(got["wdot"], 10 * ratio, rtol=0, atol=1e-9)

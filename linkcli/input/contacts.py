@@ -50,6 +50,8 @@ class ContactsSection:
         return out
 
     def disc_body(self, value, path, bodies):
+        if isinstance(value, str) and value in bodies and bodies[value].kind == "link":
+            return value, bodies[value].points[0]       # (no set of every link per contact)
         links = {n for n, b in bodies.items() if b.kind == "link"}
         name = self.name(value, path, links, "link")
         return name, bodies[name].points[0]

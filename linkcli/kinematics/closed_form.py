@@ -189,48 +189,77 @@ class Solver:
 
     def _search(self, q):
         """(branches, forced text) of the assembling combination nearest the figure, found
-        nearest-first with backtracking; None when no combination assembles at ``q``."""
+        nearest-first with backtracking; None when no combination assembles at ``q``.
+
+        Depth first, each dyad's nearer branch first, the first complete assembly wins; at
+        most SEARCH branch choices are tried (a structure that needs more is left
+        undetermined).  The walk keeps its own stack, so a chain of thousands of groups
+        takes no recursion."""
         groups = self.groups
-        best = {}
-
-        def walk(i, pos, chosen):
-            """Depth first, each dyad's nearer branch first: the first complete assembly
-            (at most SEARCH steps: a structure that needs more is left undetermined)."""
-            best["steps"] = best.get("steps", 0) + 1
-            if best["steps"] > SEARCH:
-                return False
+        pos = dict(self.fixed)
+        placed = []             # the points placed so far, in order (undone on backtracking)
+        stack = []              # per dyad decided: [index, its candidates, next one, placed]
+        i, steps = 0, 0
+        while True:
+            i = self._place_until_branch(i, pos, placed, q)
             if i == len(groups):
-                best["chosen"] = list(chosen)
-                return True
-            group = groups[i]
-            if group.kind not in BRANCHED:
-                if group.kind == "roll":
-                    group.place = rolling_reference(group, pos, self.mech)
-                if group.point is not None:
-                    p, short, *_ = self._position(group, pos, q)
-                    if _fails(short):
-                        return False
-                    pos = {**pos, group.point: p}
-                return walk(i + 1, pos, chosen)
-            for rank, (_, branch, p, ok) in enumerate(self._candidates(group, pos, q)):
-                if not ok:
-                    continue
-                chosen.append((group, branch, rank))
-                if walk(i + 1, {**pos, group.point: p}, chosen):
-                    return True
-                chosen.pop()
-            return False
-
-        walk(0, dict(self.fixed), [])
-        if "chosen" not in best:
-            return None
-        farther = [g for g, _, rank in best["chosen"] if rank]
+                break
+            if i >= 0:          # a dyad with a branch to choose: its candidates, nearer first
+                steps += 1
+                if steps > SEARCH:
+                    return None
+                stack.append([i, self._candidates(groups[i], pos, q), 0, len(placed)])
+            i = self._next_choice(stack, pos, placed)
+            if i is None:
+                return None
+        chosen = [(groups[i], candidates[k - 1][1], k - 1) for i, candidates, k, _ in stack]
+        farther = [g for g, _, rank in chosen if rank]
         forced = ""
         if farther:
             names = ", ".join(g.describe() for g in farther)
             forced = (f"{names} assembled on the branch farther from the figure: on the nearer "
                       "one a later group cannot close")
-        return [b for _, b, _ in best["chosen"]], forced
+        return [b for _, b, _ in chosen], forced
+
+    def _place_until_branch(self, i, pos, placed, q) -> int:
+        """Place the groups from ``i`` on that have no branch to choose; returns the index
+        of the next dyad with one (len(groups) when all are placed, -1 when one fails)."""
+        groups = self.groups
+        while i < len(groups):
+            group = groups[i]
+            if group.kind in BRANCHED:
+                return i
+            if group.kind == "roll":
+                group.place = rolling_reference(group, pos, self.mech)
+            if group.point is not None:
+                p, short, *_ = self._position(group, pos, q)
+                if _fails(short):
+                    return -1
+                pos[group.point] = p
+                placed.append(group.point)
+            i += 1
+        return i
+
+    def _next_choice(self, stack, pos, placed):
+        """Take the next assembling candidate of the innermost dyad that has one (undoing
+        what was placed after it); returns the index of the group after it, None when no
+        dyad has a candidate left."""
+        while stack:
+            frame = stack[-1]
+            i, candidates, k, mark = frame
+            point = self.groups[i].point
+            for placed_point in placed[mark:]:
+                del pos[placed_point]
+            del placed[mark:]
+            while k < len(candidates) and not candidates[k][3]:
+                k += 1
+            if k < len(candidates):
+                frame[2] = k + 1
+                pos[point] = candidates[k][2]
+                placed.append(point)
+                return i + 1
+            stack.pop()
+        return None
 
     def _unassembled(self, q):
         """The text of the first group that cannot close at the figure's coordinates."""
@@ -710,11 +739,27 @@ def rolling_reference(group, pos, mech):
     arm = abs(body.local[marker] - body.local[r.center])
     centre = complex(np.ravel(pos[r.center])[0])
     theta0 = np.angle(mech.moving.get(marker, mech.fixed.get(marker, 0j)) - centre)
-    terms = []
-    for term, c in rolling_terms(r, mech):
-        ref = term.value({k: complex(np.ravel(v)[0]) for k, v in pos.items()})
-        terms.append((term, c, ref))
-    return arm, theta0, terms
+    first = _FirstPositions(pos)
+    return arm, theta0, [(term, c, term.value(first)) for term, c in rolling_terms(r, mech)]
+
+
+class _FirstPositions(dict):
+    """The first position of each point of ``pos`` (a complex number), read when asked: a
+    disc's reference reads two or three points, not every point placed before it."""
+
+    def __init__(self, pos):
+        super().__init__()
+        self.pos = pos
+
+    def __missing__(self, key):
+        value = self[key] = complex(np.ravel(self.pos[key])[0])
+        return value
+
+    def get(self, key, default=None):
+        return self[key] if key in self.pos else default
+
+    def __contains__(self, key):
+        return key in self.pos
 
 
 def assembly_error(mech, group, q, bad, worst, reason) -> AssemblyError:

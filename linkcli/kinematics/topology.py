@@ -217,6 +217,10 @@ class _Decomposer:
         self.rolling_discs = {r.disc for r in mech.rolling.values()}
         self.driven: dict = {}             # {a, b} -> coordinate of a driving length
         self.done_actuators: set = set()
+        self.bodies_at: dict = {}          # point -> the bodies it belongs to, in file order
+        for body in mech.bodies.values():
+            for p in body.points:
+                self.bodies_at.setdefault(p, []).append(body)
 
     def fail(self, detail: str, hint: str | None = None):
         return StructureError(detail, file=self.mech.file, hint=hint)
@@ -402,9 +406,8 @@ class _Decomposer:
     def sides(self, p):
         """Constraints on unknown point ``p`` from bodies whose pose follows from one known point."""
         found = []
-        for body in self.mech.bodies.values():
-            if p not in body.points or body.name in self.known_bodies or \
-                    body.name in self.rolling_discs:
+        for body in self.bodies_at.get(p, ()):
+            if body.name in self.known_bodies or body.name in self.rolling_discs:
                 continue
             if body.kind == "link":
                 known = [a for a in body.points if a in self.known]
@@ -425,8 +428,8 @@ class _Decomposer:
 
     def dyad(self) -> bool:
         for p in self.mech.moving:
-            if p in self.known:
-                continue
+            if p in self.known or len(self.bodies_at.get(p, ())) < 2 and not self.driven:
+                continue                # (one body and no driving length: one side at most)
             found = self.sides(p)
             if len(found) < 2:
                 continue

@@ -222,22 +222,26 @@ def test_textbook_keys(name):
 
 # --- what is not an extreme ------------------------------------------------------------------
 def test_constant_and_monotonic_quantities_have_no_extreme():
+    """A constant quantity (to rounding) has its constant as maximum and minimum, stroke 0,
+    and no extreme at any position; a monotonic one has none."""
     model = slider_crank().model
     flat = limits.find(model, "yB")
-    assert not flat.extremes and "constant" in flat.why
-    for name in ("vA", "yBdot"):        # the crank pin's speed; a rate that is 0
+    assert not flat.extremes and flat.constant == 0.0 and flat.stroke == 0.0
+    speed = 100.0 * math.radians(60.0)              # the crank pin's speed r qdot, mm/s
+    for name, value in (("vA", speed), ("yBdot", 0.0)):
         still = limits.find(model, name)
-        assert not still.extremes and "constant" in still.why, name
+        assert not still.extremes and still.constant == pytest.approx(value, rel=1e-12), name
     turning = limits.find(model, "phi")
     assert not turning.extremes and "keeps its sign" in turning.why and "rises" in turning.why
 
 
 def test_undefined_limits_are_located_solve_errors():
-    link = slider_crank(extra="  flat: {maximum: yB}\n  ratio: {time_ratio: xB, from: -90, "
+    link = slider_crank(extra="  flat: {at_maximum: yB}\n  ratio: {time_ratio: xB, from: -90, "
                         "to: 200}\n  only: {minimum: xB, from: -90, to: 90}",
                         report="position: [flat]")
-    with pytest.raises(SolveError, match=r"'flat' \(the maximum of yB\) is undefined: yB has no "
-                       r"extreme over q = 0..360 deg: it is constant"):
+    with pytest.raises(SolveError, match=r"'flat' \(where the maximum is of yB\) is undefined: "
+                       r"yB is constant \(0.0000 mm\) over q = 0..360 deg, its rate 0 to rounding: "
+                       "its maximum and minimum are at every position"):
         link.solve()
     with pytest.raises(SolveError, match="is not a full turn of the crank"):
         link.solve(names=["ratio"])
@@ -318,3 +322,95 @@ def test_a_length_driver_needs_a_range():
     model = linkcli.load(os.path.join(ROOT, "mechanisms", "padova-2020-07.yaml")).model
     with pytest.raises(InputError, match="the driver is a length, which has no natural range"):
         limits.find(model, "phi3")
+
+
+# --- constant up to rounding, dwells and toggles inside the range ---------------------------
+DATA = os.path.join(ROOT, "tests", "data")
+
+
+def test_a_constant_rate_has_its_constant_as_maximum_and_no_position(capsys):
+    """A parallelogram's rocker turns with the crank: phi3dot = qdot = 10 deg/s exactly.  Its
+    sampled rate is rounding (1e-14), whose signs listed hundreds of extremes and an
+    at_maximum that rounding picked (20.489 deg)."""
+    path = os.path.join(DATA, "parallelogram_atmax.yaml")
+    link = linkcli.load(path)
+    assert link.solve(names=["wmax"]).values["wmax"] == pytest.approx(10.0, rel=1e-12)
+    with pytest.raises(SolveError, match="phi3dot is constant .* at every position"):
+        link.solve(names=["wmax_at"])
+    assert main(["solve", path]) == 3
+    assert main(["limits", path, "--of", "phi3dot", "--from", "10", "--to", "170",
+                 "--format", "json"]) == 0
+    import json
+    found = json.loads(capsys.readouterr().out)[0]
+    assert found["extremes"] == [] and found["constant"] == pytest.approx(10.0, rel=1e-12)
+
+
+def _crossed_phi2_maximum():
+    """The largest angle of BC on the parallelogram's crossed branch (q in 180..360 deg, C
+    the intersection of the circles about B and D that is not B + 100, the parallelogram's),
+    from a fine grid refined by golden sections: an independent closed form."""
+    def phi2(q):
+        b = 40 * np.exp(1j * np.radians(q))
+        d = 100.0
+        dist = abs(d - b)
+        along = (100 ** 2 - 40 ** 2 + dist ** 2) / (2 * dist)
+        across = np.sqrt(100 ** 2 - along ** 2)
+        u = (d - b) / dist
+        both = np.array([b + u * (along + 1j * across), b + u * (along - 1j * across)])
+        c = np.where(abs(both[0] - b - 100) > abs(both[1] - b - 100), both[0], both[1])
+        return np.degrees(np.angle(c - b))
+    q = np.linspace(180.5, 359.5, 20001)
+    values = phi2(q)
+    i = int(np.argmax(values))
+    a, b = q[i - 1], q[i + 1]
+    g = (math.sqrt(5) - 1) / 2
+    for _ in range(80):
+        c, d = b - g * (b - a), a + g * (b - a)
+        if phi2(c) > phi2(d):
+            b = d
+        else:
+            a = c
+    return (a + b) / 2, float(phi2((a + b) / 2))
+
+
+def test_limits_over_a_change_point_list_the_extremes_only(capsys):
+    """Over a whole turn the parallelogram passes its change points (0 and 180 deg) and the
+    closed form goes on along the crossed branch: phi2 is 0 up to rounding on the first
+    half and has one maximum on the second; limits was an internal error (exit 70)."""
+    path = os.path.join(DATA, "parallelogram.yaml")
+    assert main(["limits", path, "--format", "json"]) == 0
+    import json
+    found = {f["quantity"]: f for f in json.loads(capsys.readouterr().out)}
+    q_max, phi2_max = _crossed_phi2_maximum()
+    assert [e["kind"] for e in found["phi2"]["extremes"]] == ["maximum"]
+    extreme = found["phi2"]["extremes"][0]
+    assert extreme["q"] == pytest.approx(q_max, abs=1e-6)
+    assert extreme["value"] == pytest.approx(phi2_max, abs=1e-9)
+    assert found["phi3"]["extremes"] == [] and found["phi3dot"]["extremes"] == []
+    assert any("constant (10.0000 deg/s) for q in 0.1..179.9" in m
+               for m in found["phi3dot"]["messages"])
+
+
+def test_limits_over_a_toggle_inside_the_range(capsys):
+    """docs/examples/toggle.yaml: crank and rod of equal length, so C stays at the crank's
+    pivot from 90 to 270 deg on the branch the closed form keeps (x_C = 50 cos q +
+    50 |cos q| mm).  limits was an internal error (exit 70, the rows left out at the
+    toggles lost the driver's rates); the stretch where x_C is 0 to rounding is one held
+    minimum, never noise."""
+    path = os.path.join(ROOT, "docs", "examples", "toggle.yaml")
+    assert main(["limits", path, "--format", "json"]) == 0
+    import json
+    found = {f["quantity"]: f for f in json.loads(capsys.readouterr().out)}
+    assert found["xC"]["extremes"] == [{"kind": "maximum", "q": 0.0, "value": 100.0,
+                                        "span": None}]
+    assert found["xCdot"]["extremes"] == []
+    dwell = limits.find(linkcli.load(path).model, "xC", 0.05, 359.95)
+    assert [e.kind for e in dwell.extremes] == ["minimum"]
+    (held,) = dwell.extremes
+    step = (359.95 - 0.05) / limits.GRID
+    assert held.value == 0.0 and abs(held.span[0] - 90) < step and abs(held.span[1] - 270) < step
+    link = linkcli.loads(open(path).read().replace(
+        "report:", "quantities:\n  low: {at_minimum: xC, from: 0.05, to: 359.95}\nreport:"))
+    with pytest.raises(SolveError, match=r"xC holds its minimum \(0.0000 mm\) over q = "
+                       r"90\.\d+..26\d\.\d+ deg"):
+        link.solve(names=["low"])

@@ -13,6 +13,18 @@ solver's exact rate, to XTOL of the driver's display unit.  The rates solved:
 - N a speed |v_P| (or |v_B - v_A|): d(|v|^2 / 2)/dq = (xdot xddot + ydot yddot) / qdot, of
   the sign of d|v|/dq and smooth where v = 0 (a speed's minima at the dead centres).
 
+Zero up to rounding: a sampled rate has no sign where it is within the rounding it carries
+(``kinematics.toggles.negligible``, the rule the dyads' toggles use), that is TOGGLE times the
+quantity's scale per radian of the driver (its square for a speed), amplified by
+1 / m^(level + 2) at a position whose smallest conditioning is m (level 0 for a position
+quantity, whose rate is a velocity; 1 for a rate, whose rate is an acceleration): the
+rounding of the positions next to a toggle, carried into the rates.  A quantity whose every
+sampled rate is rounding is constant: its maximum and minimum are that constant (the stroke
+0), and where it is (at_maximum) is every position, which is refused, never a position that
+rounding picked.  A stretch of two or more samples whose rate is rounding, between a rising
+and a falling part, is an extreme held over that stretch (a dwell): its value is given with
+the stretch, and its position refused the same way.
+
 From the extremes: the stroke, greatest maximum - least minimum (of an angle, its swing along
 the motion); for a crank making full turns, with one maximum and one minimum, the driver's
 sweeps d1 + d2 = one turn between them, the time ratio max(d1, d2) / min(d1, d2) (the longer
@@ -30,18 +42,15 @@ from linkcli.answers import quantities
 from linkcli.answers import sweep as sweep_mod
 from linkcli.answers.formats import csv_text, fmt
 from linkcli.errors import Caution, InputError, SolveError
+from linkcli.kinematics import toggles
 from linkcli.model.mechanism import limit_refusal, split_rate
 
 #: grid intervals over the range: extremes closer together than a grid step are not told apart
 GRID = 3600
 #: the driver value of an extreme is found to XTOL of the driver's display unit
 XTOL = 1e-10
-#: a sampled rate at most NOISE times the largest of its run is rounding: it has no sign
-NOISE = 1e-13
 #: a refined zero whose rate is above POLE times the largest of its run is a jump, not a zero
 POLE = 1e-6
-#: a quantity is constant when its rate times the range is at most CONSTANT times its scale
-CONSTANT = 1e-12
 SPEEDS = ("speed", "relative_speed")
 #: what a limit quantity of each kind is, in messages
 WORDS = {"maximum": "the maximum", "minimum": "the minimum", "at_maximum": "where the maximum is",
@@ -57,6 +66,12 @@ class Extreme:
     value: float
     kind: str                   # 'maximum' | 'minimum'
     level: float = field(default=0.0, compare=False)   # the value along the motion (unwrapped)
+    #: (first, last) driver value of a dwell: the value held, to rounding, over that stretch
+    span: tuple | None = field(default=None, compare=False)
+
+    def where(self) -> str:
+        """Its driver value, or the stretch of a dwell."""
+        return _num(self.q) if self.span is None else f"{_num(self.span[0])}..{_num(self.span[1])}"
 
 
 @dataclass
@@ -78,6 +93,7 @@ class Limits:
     why: str = ""                                    # why there is no extreme, when none
     whole: bool = True                               # every grid value assembled
     position: bool = True                            # a position quantity: it has strokes
+    constant: float | None = None                    # the value, where constant to rounding
 
     @property
     def time_ratio(self) -> float | None:
@@ -153,7 +169,8 @@ class _Probe:
         self.q_factor = units.display(base, 0)[1]
         rate_factor = units.display(base, 1)[1]
         self.qdot_si = mech.driver.rate if qdot is None else qdot * rate_factor
-        level = order + (1 if quantity.kind in SPEEDS else 0)
+        #: 0 for a position quantity (its rate is a velocity), 1 for a rate or a speed
+        self.level = level = order + (1 if quantity.kind in SPEEDS else 0)
         if level == 1 and self.qdot_si == 0:
             raise SolveError(f"the driver's rate is 0, so '{name}' is 0 at every position and "
                              "has no extremes", file=mech.file,
@@ -215,9 +232,12 @@ def find(mech, name, start=None, stop=None, *, qdot=None, method="closed", tol=N
     found.whole = bool(swept.solved.all())
     rows = np.nonzero(swept.solved)[0]
     values = {n: np.asarray(v, float) for n, v in swept.values.items()}
+    conditioning = np.asarray(swept.conditioning, float)
     period = quantities.angle_period(mech, name, found.unit)
     roots, levels, scales = [], [], []
     natural = _natural(mech, quantity, order, probe)
+    per_q = probe.q_factor / (1.0 if mech.driver.base == "angle" else
+                              sweep_mod.mechanism_size(mech))
     for where, turns in _runs(rows, grid, periodic, found.whole):
         picked = np.searchsorted(rows, where)
         qs = q[where] + turns * (turn or 0.0)
@@ -225,23 +245,60 @@ def find(mech, name, start=None, stop=None, *, qdot=None, method="closed", tol=N
         shown = values[name][picked]
         level = shown if period is None else np.unwrap(shown, period=period)
         levels.append((qs, level))
-        scale = float(np.max(np.abs(slope))) if slope.size else 0.0
-        constant = _constant(scale, stop - start, level, natural, probe.parts is not None)
-        scales.append((qs, shown, level, constant))
-        if not constant:
-            roots += _refine(probe, qs, slope, scale, found)
+        m = conditioning[picked]
+        zero = toggles.negligible(slope, _rounding(probe, level, natural, per_q, m))
+        held = _held(probe, shown, level, natural, m) if zero.all() else None
+        scales.append((qs, shown, level, held))
+        if held is None:
+            roots += _refine(probe, qs, slope, zero, found, lambda part: _held(
+                probe, shown[part], level[part], natural, m[part]))
     roots = _distinct(roots, start, turn if periodic else None, (stop - start) / grid)
     if roots:
-        at = np.array([r for r, _ in roots])
+        at = np.array([r for r, *_ in roots])
         result = probe.solve(at, [name])
         shown = np.ravel(result.values[name]) + 0 * at
         found.unit = result.units[name]
-        for (r, kind), value in zip(roots, shown):
-            found.extremes.append(Extreme(float(r), float(value), kind,
-                                          _level(levels, r, float(value), period, turn)))
-    found.why = "" if found.extremes else _why(found, scales)
+        for (r, kind, span, held), value in zip(roots, shown):
+            value = float(value) if held is None else held
+            found.extremes.append(Extreme(float(r), value, kind,
+                                          _level(levels, r, value, period, turn), span))
+    found.constant = None if found.extremes else _constant(scales, period)
+    found.why = "" if found.extremes or found.constant is not None else _why(found, scales)
     _strokes(found, probe)
     return found
+
+
+def _rounding(probe, level, natural, per_q, conditioning):
+    """The rounding each sampled rate dN/dq carries (display units of N per display unit of
+    q): TOGGLE's scale for ``toggles.negligible``, the quantity's size (its largest value
+    over the run, at least its natural size) per radian of the driver, squared for a speed
+    (whose rate is that of |v|^2 / 2), over m^(level + 2) with m the sample's conditioning."""
+    size = max(float(np.max(np.abs(level))) if level.size else 0.0, natural)
+    scale = (size * size if probe.parts is not None else size) * per_q
+    return scale / np.maximum(conditioning, toggles.EPS) ** (probe.level + 2)
+
+
+def _held(probe, shown, level, natural, conditioning) -> float:
+    """The value a run constant to rounding holds: the middle of its samples, 0 where that
+    is itself rounding (TOGGLE of the quantity's size over m^(level + 1), the rounding of
+    a value of that order next to a toggle), so noise such as 1e-10 is never a value."""
+    value = float(np.median(shown))
+    size = max(float(np.max(np.abs(level))), natural)
+    least = max(float(np.min(conditioning)), toggles.EPS)
+    return 0.0 if toggles.negligible(value, size / least ** (probe.level + 1)) else value
+
+
+def _constant(scales, period) -> float | None:
+    """The value of a quantity constant (to rounding) over every run of the range, when all
+    the runs hold the same value to 1e-9 of it; None otherwise."""
+    held = [value for *_, value in scales]
+    if not held or any(value is None for value in held):
+        return None
+    gap = np.abs(np.array(held) - held[0])
+    if period is not None:
+        gap = np.minimum(gap, period - gap % period)
+    size = max(float(np.max(np.abs(held))), 1e-300)
+    return held[0] if float(np.max(gap)) <= 1e-9 * size else None
 
 
 def _runs(rows, grid, periodic, whole):
@@ -264,17 +321,26 @@ def _runs(rows, grid, periodic, whole):
     return runs
 
 
-def _refine(probe, qs, slope, scale, found) -> list:
-    """(q, 'maximum' or 'minimum') of every sign change of ``slope`` over the run ``qs``,
-    refined by Brent's method on the exact rate."""
-    if scale == 0 or qs.size < 2:
+def _refine(probe, qs, slope, zero, found, held) -> list:
+    """(q, 'maximum' or 'minimum', None, None) of every sign change of ``slope`` over the
+    run ``qs`` (``zero``: the samples whose rate is rounding, which have no sign), refined
+    by Brent's method on the exact rate; (first q, kind, (first, last), value) of a dwell,
+    two or more samples of rounding between a rising and a falling part, whose value
+    ``held(slice)`` gives from its samples."""
+    if qs.size < 2:
         return []
     from scipy.optimize import brentq
-    sign = np.where(np.abs(slope) <= NOISE * scale, 0, np.sign(slope))
+    scale = float(np.max(np.abs(slope)))
+    sign = np.where(zero, 0, np.sign(slope))
     signed = np.nonzero(sign)[0]
     out = []
     for j, k in zip(signed[:-1], signed[1:]):
         if sign[j] == sign[k]:
+            continue
+        kind = "maximum" if sign[j] > 0 else "minimum"
+        if k - j > 2:
+            out.append((float(qs[j + 1]), kind, (float(qs[j + 1]), float(qs[k - 1])),
+                        held(slice(j + 1, k))))
             continue
         a, b = float(qs[j]), float(qs[k])
         fa, fb = probe.rate_at(a), probe.rate_at(b)
@@ -286,23 +352,25 @@ def _refine(probe, qs, slope, scale, found) -> list:
             found.notes.append(f"d({probe.name})/dq changes sign by a jump at q = "
                                f"{_num(root)} {found.q_unit}, not through 0: not an extreme")
             continue
-        out.append((root, "maximum" if sign[j] > 0 else "minimum"))
+        out.append((root, kind, None, None))
     return out
 
 
 def _distinct(roots, start, turn, step):
     """The roots in driver order, each once (a turn's seam is seen twice), in
-    [start, start + turn) over a full turn."""
+    [start, start + turn) over a full turn (a dwell's stretch moved with its start)."""
     out = []
-    for root, kind in roots:
+    for root, kind, span, held in roots:
         if turn is not None:
-            root = start + (root - start) % turn
-            if root >= start + turn - XTOL:
-                root = start
+            moved = start + (root - start) % turn
+            if moved >= start + turn - XTOL:
+                moved = start
+            span = None if span is None else (moved, moved + span[1] - span[0])
+            root = moved
         if not any(abs(root - r) < 1e-3 * step or (turn is not None and abs(
-                abs(root - r) - turn) < 1e-3 * step) for r, _ in out):
-            out.append((root, kind))
-    return sorted(out)
+                abs(root - r) - turn) < 1e-3 * step) for r, *_ in out):
+            out.append((root, kind, span, held))
+    return sorted(out, key=lambda r: r[0])
 
 
 def _level(levels, root, value, period, turn):
@@ -318,22 +386,15 @@ def _level(levels, root, value, period, turn):
     return value
 
 
-def _constant(scale, span, level, natural, squared) -> bool:
-    """Whether a run is of a constant quantity: its largest rate over the range is rounding,
-    at most CONSTANT times its size (the size squared for a speed, whose rate is that of
-    |v|^2 / 2)."""
-    size = max(float(np.max(np.abs(level))), natural)
-    return scale * span <= CONSTANT * (size * size if squared else size)
-
-
 def _why(found, scales) -> str:
     """Why ``found`` has no extreme: the quantity is constant, or it only rises or falls."""
     if not scales:
         return "the mechanism cannot be assembled anywhere in the range"
     parts = []
-    for qs, shown, level, constant in scales:
-        if constant:
-            parts.append(f"it is constant ({fmt(shown[0], 4)} {found.unit})")
+    for qs, shown, level, held in scales:
+        if held is not None:
+            parts.append(f"it is constant ({fmt(held, 4)} {found.unit}) for q in "
+                         f"{_num(qs[0])}..{_num(qs[-1])} {found.q_unit}")
             continue
         inside = qs <= found.stop
         last = int(np.nonzero(inside)[0][-1]) if inside.any() else qs.size - 1
@@ -363,13 +424,17 @@ def _natural(mech, quantity, order, probe) -> float:
 
 
 def _strokes(found: Limits, probe) -> None:
-    """The stroke from the extremes; over a whole turn with one maximum and one minimum, the
-    driver's sweeps of the working and return strokes and their times."""
+    """The stroke from the extremes (0 for a constant); over a whole turn with one maximum
+    and one minimum, neither a dwell, the driver's sweeps of the working and return strokes
+    and their times."""
     maxima, minima = found.of("maximum"), found.of("minimum")
+    if found.constant is not None and found.position:
+        found.stroke = 0.0
     if not maxima or not minima or not found.position:
         return
     found.stroke = max(e.level for e in maxima) - min(e.level for e in minima)
-    if not (found.periodic and found.whole and len(maxima) == 1 and len(minima) == 1):
+    if not (found.periodic and found.whole and len(maxima) == 1 and len(minima) == 1) or \
+            maxima[0].span is not None or minima[0].span is not None:
         return
     rise = (maxima[0].q - minima[0].q) % found.turn
     sweeps = sorted([rise, found.turn - rise], reverse=True)
@@ -429,6 +494,8 @@ def answer(mech, quantity, found: Limits):
                           file=mech.file, key=f"quantities.{quantity.name}", line=quantity.line,
                           hint=hint)
 
+    if found.constant is not None:
+        return _of_constant(found, kind, undefined)
     if not found.extremes:
         raise undefined(f"{of} has no extreme over {found.range_text()}: {found.why}" +
                         "".join(f"; {note}" for note in found.notes),
@@ -445,6 +512,11 @@ def answer(mech, quantity, found: Limits):
         some = found.of(wanted)
         pick = _first_extreme(some, wanted)
         if kind.startswith("at_"):
+            if pick.span is not None:
+                raise undefined(f"{of} holds its {wanted} ({fmt(pick.value, 4)} {found.unit}) "
+                                f"over q = {pick.where()} {found.q_unit} (its rate is 0 to "
+                                "rounding there), not at one position",
+                                hint=f"ask for the {wanted} itself")
             return pick.q, found.q_unit
         return pick.value, found.unit
     if kind == "stroke":
@@ -456,6 +528,20 @@ def answer(mech, quantity, found: Limits):
     if found.times is None:
         raise undefined("the driver's rate is 0", hint="give the driver a rate (driver: rate:)")
     return found.times[0 if quantity.component == "working" else 1], "s"
+
+
+def _of_constant(found: Limits, kind: str, undefined):
+    """(value, unit) of a limit of a quantity constant to rounding: its maximum and minimum
+    are the constant, its stroke 0; where they are, or a time ratio, is refused."""
+    value = f"{fmt(found.constant, 4)} {found.unit}".rstrip()
+    if kind in ("maximum", "minimum"):
+        return found.constant, found.unit
+    if kind == "stroke" and found.stroke is not None:
+        return found.stroke, found.unit
+    what = "its maximum and minimum are at every position" if kind.startswith("at_") else \
+        "it has no strokes"
+    raise undefined(f"{found.name} is constant ({value}) over {found.range_text()}, its rate "
+                    f"0 to rounding: {what}", hint="ask for the maximum or minimum itself")
 
 
 def _first_extreme(some: list, wanted: str) -> Extreme:
@@ -472,8 +558,12 @@ def _no_ratio(found: Limits) -> str:
         return f"the range {found.range_text()} is not a full turn of the crank"
     if not found.whole:
         return ("the crank cannot make a full turn: " + "; ".join(found.notes))
+    held = [e for e in found.extremes if e.span is not None]
+    if held and len(found.extremes) == 2:
+        return (f"{found.name} holds its {held[0].kind} over q = {held[0].where()} "
+                f"{found.q_unit}: the strokes have no single start")
     return (f"{found.name} has {len(found.extremes)} extremes over the turn (at q = "
-            f"{', '.join(_num(e.q) for e in found.extremes)} {found.q_unit}), not one maximum "
+            f"{', '.join(e.where() for e in found.extremes)} {found.q_unit}), not one maximum "
             "and one minimum")
 
 
@@ -481,8 +571,13 @@ def _no_ratio(found: Limits) -> str:
 def rows(found: Limits, decimals: int) -> list:
     """(quantity, what, q, value, unit) rows of ``found``, as text."""
     out = []
+    if found.constant is not None:
+        out.append((found.name, "constant", f"{fmt(found.start, decimals)}..{fmt(found.stop, decimals)}",
+                    fmt(found.constant, decimals), found.unit))
     for e in found.extremes:
-        out.append((found.name, e.kind, fmt(e.q, decimals), fmt(e.value, decimals), found.unit))
+        where = fmt(e.q, decimals) if e.span is None else \
+            f"{fmt(e.span[0], decimals)}..{fmt(e.span[1], decimals)}"
+        out.append((found.name, e.kind, where, fmt(e.value, decimals), found.unit))
     if found.stroke is not None:
         out.append((found.name, "stroke", "", fmt(found.stroke, decimals), found.unit))
     if found.sweeps is not None:
@@ -499,14 +594,17 @@ def messages(found_list) -> list:
     quantities without an extreme."""
     out = [f"over {found.range_text()}, {note}" for found in found_list for note in found.notes]
     out += [f"'{found.name}' has no extreme over {found.range_text()}: {found.why}"
-            for found in found_list if not found.extremes]
+            for found in found_list if not found.extremes and found.constant is None]
     return list(dict.fromkeys(out))
 
 
 def as_dict(found: Limits) -> dict:
     return {"quantity": found.name, "unit": found.unit, "q_unit": found.q_unit,
             "from": found.start, "to": found.stop, "full_turn": found.periodic,
-            "extremes": [{"kind": e.kind, "q": e.q, "value": e.value} for e in found.extremes],
+            "constant": found.constant,
+            "extremes": [{"kind": e.kind, "q": e.q, "value": e.value,
+                          "span": None if e.span is None else list(e.span)}
+                         for e in found.extremes],
             "stroke": found.stroke, "time_ratio": found.time_ratio,
             "sweeps": None if found.sweeps is None else {"working": found.sweeps[0],
                                                           "return": found.sweeps[1]},

@@ -123,6 +123,8 @@ class Sweep:
     units: dict = field(default_factory=dict)
     q_unit: str = ""
     issues: list = field(default_factory=list)
+    #: the smallest conditioning of the groups at each solved row (1 where none has one)
+    conditioning: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
 
 # --- driver values -------------------------------------------------------------------------
@@ -216,6 +218,8 @@ class Block:
     q: np.ndarray
     solved: np.ndarray
     values: dict
+    #: the smallest conditioning of the groups at each solved row (1 where none has one)
+    conditioning: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     @property
     def count(self) -> int:
@@ -258,7 +262,7 @@ class Sweeper:
         self._done = False
         self._plan = None
         #: the driver's natural size: 1 rad, or the mechanism's size (m) for a length
-        self._q_size = 1.0 if base == "angle" else _size(mech)
+        self._q_size = 1.0 if base == "angle" else mechanism_size(mech)
 
     # the blocks --------------------------------------------------------------------
     def values(self, lo: int, hi: int) -> np.ndarray:
@@ -355,7 +359,8 @@ class Sweeper:
         if not self.names or not keep.any():
             if self.names and not self.units:
                 self._units_of(sub)
-            return Block(q, good, {n: np.zeros(0) for n in self.names})
+            return Block(q, good, {n: np.zeros(0) for n in self.names},
+                         _conditioning(sub) if keep.any() else np.zeros(0))
         if self.order >= 2:
             self.solver.accelerations(sub, self.qdd)
         alive = np.nonzero(keep)[0]
@@ -380,7 +385,7 @@ class Sweeper:
         self.units.update(result.units)
         self.solved_rows += int(np.count_nonzero(good))
         values = {n: np.broadcast_to(result.values[n], sub.q.shape) for n in self.names}
-        return Block(q, good, values)
+        return Block(q, good, values, _conditioning(sub))
 
     def _units_of(self, sub):
         """The units of the names when every assembled row of a block is left out (for a
@@ -624,15 +629,17 @@ def sweep(mech, q, names=None, method="closed", tol=None, qdot=None, qddot=None,
     """Solve ``mech`` at every driver value of ``q`` (display units, 1-D), in blocks."""
     sweeper = Sweeper(mech, q, names, method, tol, qdot, qddot, block)
     q = np.asarray(sweeper.q, dtype=float)
-    solved, parts = [], {n: [] for n in sweeper.names}
+    solved, parts, conditioning = [], {n: [] for n in sweeper.names}, [np.zeros(0)]
     try:
         for part in sweeper.blocks():
             solved.append(part.solved)
+            conditioning.append(part.conditioning)
             for n in sweeper.names:
                 parts[n].append(part.values[n])
         out = Sweep(mech, method, q, np.concatenate(solved) if solved else np.zeros(0, bool),
                     sweeper.names, q_unit=sweeper.q_unit)
         out.values = {n: np.concatenate(parts[n]) for n in sweeper.names}
+        out.conditioning = np.concatenate(conditioning)
     except MemoryError:
         raise _out_of_memory(q.size) from None
     out.units = dict(sweeper.units)
@@ -640,7 +647,16 @@ def sweep(mech, q, names=None, method="closed", tol=None, qdot=None, qddot=None,
     return out
 
 
-def _size(mech) -> float:
+def _conditioning(kin) -> np.ndarray:
+    """The smallest conditioning measure of the groups at each position of ``kin`` (1 where
+    no group has one: every group is a crank or a rigid placement)."""
+    least = np.ones(np.shape(kin.q))
+    for measure in kin.measure.values():
+        least = np.minimum(least, measure)
+    return least
+
+
+def mechanism_size(mech) -> float:
     """The mechanism's size: the largest distance of a figure point from the first (m)."""
     points = list(mech.fixed.values()) + list(mech.moving.values())
     return max((abs(p - points[0]) for p in points), default=1.0) or 1.0

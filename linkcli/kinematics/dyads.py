@@ -23,10 +23,11 @@ import math
 
 import numpy as np
 
-EPS = np.finfo(float).eps
+# a discriminant within TOGGLE of zero, relative to the rounding it carries, is a toggle:
+# ``toggles.negligible``, the one rule of "zero up to rounding" (limits use it too)
+from linkcli.kinematics.toggles import EPS, TOGGLE, negligible  # noqa: F401 (compiled's)
+
 ROUNDING = 64 * EPS
-#: a discriminant within TOGGLE of zero, relative to the rounding it carries, is a toggle
-TOGGLE = 1024 * EPS
 
 
 def cross(a, b):
@@ -90,8 +91,7 @@ def circle_circle(a, r1, b, r2, branch, flat=False):
                                                     math.sqrt(least))):
             return p, short, False
     reach = (np.abs(a) + np.abs(b)) / np.sqrt(d2)          # coordinates against the span
-    noise = TOGGLE * np.maximum(across2, along2) * (1.0 + reach)
-    return p, short, np.abs(e) <= noise
+    return p, short, negligible(e, np.maximum(across2, along2) * (1.0 + reach))
 
 
 def _reach(a, b, d2) -> float:
@@ -162,18 +162,17 @@ def circle_line(a, r, b, c, value, branch, flat=False, frame=None):
         top = _top(r)
         if _clear(lowest, TOGGLE * (top * top + top * (_top(a) + _top(b) + _top(e) + top))):
             return p, short, False
-    # TOGGLE (r^2 + |d| (|A| + |B| + |e| + r)), the same operations in place
-    noise = np.abs(a)
-    if writable(noise, b, e, r, dist):
-        noise += np.abs(b)
-        noise += np.abs(e)
-        noise += r
-        noise *= np.abs(dist)
-        noise += r * r
-        noise *= TOGGLE
+    # the rounding carried, r^2 + |d| (|A| + |B| + |e| + r), with the operations in place
+    scale = np.abs(a)
+    if writable(scale, b, e, r, dist):
+        scale += np.abs(b)
+        scale += np.abs(e)
+        scale += r
+        scale *= np.abs(dist)
+        scale += r * r
     else:
-        noise = TOGGLE * (r * r + np.abs(dist) * (noise + np.abs(b) + np.abs(e) + r))
-    return p, short, np.abs(disc) <= noise
+        scale = r * r + np.abs(dist) * (scale + np.abs(b) + np.abs(e) + r)
+    return p, short, negligible(disc, scale)
 
 
 def is_number(x, value) -> bool:
@@ -238,4 +237,4 @@ def slotted(b, length, a, value, branch, flat=False):
     if not flat:
         return p, short
     reach = (np.abs(a) + np.abs(b)) / rho_safe
-    return p, short, (1.0 - np.abs(s)) <= TOGGLE * (1.0 + reach)
+    return p, short, negligible(1.0 - np.abs(s), 1.0 + reach)

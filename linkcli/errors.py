@@ -117,6 +117,22 @@ class AtRestError(SingularError):
         self.rows = rows
 
 
+class SelfLockingError(SolveError):
+    """No joint forces consistent with the friction at some driver values: raising the losses
+    from zero, the joint forces grow without bound before the given losses are reached (or
+    the signs of the normal forces find no consistent set).  ``rows`` marks those driver
+    values, ``reached`` is the fraction of the losses reached there (0 to 1; None where no
+    set was found), ``what`` the losses."""
+
+    def __init__(self, detail: str, *, rows=None, q=None, reached=None, what: str = "", **kw):
+        super().__init__(detail, **kw)
+        self.rows = rows
+        self.q = q
+        self.reached = reached
+        self.what = what
+        self.measure = 0.0 if reached is None else reached
+
+
 class NoWorkError(SingularError):
     """The unknown load does no work at some driver values (a dead centre for it):
     ``rows`` marks them, ``measure`` is the smallest normalised coefficient ratio."""

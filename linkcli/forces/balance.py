@@ -49,15 +49,17 @@ def balance(mech, q=None) -> dict:
             "unknown": value, "E": dyn_mod.kinetic_energy(mech, dyn, kin.pos, kin.vel)}
 
 
-def dynamic_power(mech, kin, unit_kin):
-    """P (W per unit driver rate) at ``kin`` (accelerations needed), 0 without dynamics."""
+def dynamic_power(mech, kin, unit_kin, reactions=None):
+    """P (W per unit driver rate) at ``kin`` (accelerations needed), 0 without dynamics;
+    the losses' from ``reactions``, the joint forces at ``kin`` (solved when not given)."""
     dyn = mech.dynamics
     if dyn is None:
         return 0.0
     extra = dyn_mod.inertia_gravity_power(mech, dyn, kin, unit_kin.vel) + \
         dyn_mod.disc_torque_power(mech, dyn, kin, unit_kin.vel)
     if has_losses(dyn):
-        extra = extra + friction_power(mech, dyn, kin, unit_kin.vel, solve(mech, kin))
+        reactions = solve(mech, kin) if reactions is None else reactions
+        extra = extra + friction_power(mech, dyn, kin, unit_kin.vel, reactions)
     return extra
 
 

@@ -21,7 +21,7 @@ undetermined and the joint forces are refused (a slider at rest has no friction 
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -82,32 +82,50 @@ class Losses:
     sigma: dict = field(default_factory=dict)        # (kind, name) -> sgn of the motion
     signs: dict = field(default_factory=dict)        # (kind, name) -> assumed sgn N
     directions: dict = field(default_factory=dict)   # point -> assumed unit R (0: none yet)
+    #: the fraction t of every coefficient applied (mu t, u_r t, rho t): 0 frictionless
+    scale: float = 1.0
 
     @property
     def any(self) -> bool:
         return bool(self.sliders or self.discs or self.pins)
 
+    def scaled(self, t: float) -> "Losses":
+        """The same losses with every coefficient times ``t`` (the same signs, directions)."""
+        return replace(self, scale=t)
+
     def slider_factor(self, name):
-        """T/N = -mu sgn(v_rel) s of a slider (0 without friction)."""
+        """T/N = -mu t sgn(v_rel) s of a slider (0 without friction)."""
         if name not in self.sliders:
             return 0.0
-        return -self.sliders[name] * self.sigma[("slider", name)] * self.signs[("slider", name)]
+        return -self.sliders[name] * self.scale * self.sigma[("slider", name)] * \
+            self.signs[("slider", name)]
 
     def disc_factor(self, name):
-        """M/N = -u_r sgn(omega) s of a rolling disc (0 without rolling resistance)."""
+        """M/N = -u_r t sgn(omega) s of a rolling disc (0 without rolling resistance)."""
         if name not in self.discs:
             return 0.0
-        return -self.discs[name].resistance * self.sigma[("disc", name)] * \
+        return -self.discs[name].resistance * self.scale * self.sigma[("disc", name)] * \
             self.signs[("disc", name)]
 
     def pin_factor(self, point, body, part):
         """The couple on ``other`` per unit x (part 0) or y (part 1) of the pin's force on
-        it: -rho sgn(omega_rel) e_x (e_y); None when ``body`` is not the pin's ``other``."""
+        it: -rho t sgn(omega_rel) e_x (e_y); None when ``body`` is not the pin's ``other``."""
         pin = self.pins.get(point)
         if pin is None or pin.other != body:
             return None
         e = self.directions[point]
-        return -pin.radius * self.sigma[("pin", point)] * (np.real(e) if part == 0 else np.imag(e))
+        return -pin.radius * self.scale * self.sigma[("pin", point)] * \
+            (np.real(e) if part == 0 else np.imag(e))
+
+    def describe(self) -> str:
+        """The losses (times ``scale`` where it is a number), for messages."""
+        t = self.scale if np.ndim(self.scale) == 0 else 1.0
+        parts = [f"mu = {mu * t:.6g} at slider {s}" for s, mu in self.sliders.items()]
+        parts += [f"rolling resistance {d.resistance * t:.6g} m of disc {d.name}"
+                  for d in self.discs.values()]
+        parts += [f"friction circle {pin.radius * t:.6g} m at pin {p}"
+                  for p, pin in self.pins.items()]
+        return ", ".join(parts)
 
 
 def losses_at(mech, kin) -> Losses:
@@ -181,8 +199,7 @@ def update(losses, normals, forces):
     for p, r in forces.items():
         size = np.abs(r)
         directions[p] = np.where(size > 0, r / np.where(size > 0, size, 1.0), 0.0)
-    return Losses(losses.sliders, losses.discs, losses.pins, losses.sigma, signs,
-                  directions), kept
+    return replace(losses, signs=signs, directions=directions), kept
 
 
 def friction_force(mu, sigma, normal):

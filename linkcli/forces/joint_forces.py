@@ -2,11 +2,11 @@
 
 A x = -b (``newton_euler``) is scaled dimensionless (moment rows / L, moment columns
 * L, L the mechanism's size) and solved as a stack of matrices; a dimensionless
-condition number above ``COND_LIMIT`` is a singular position.  With losses the
-matrix depends on the sign s of each slider's and disc's N and on the direction e of
-each friction circle's R (``friction``): assume s = +1 and no friction circles, solve,
-take s = sgn N and e = R / |R|, and repeat until the signs agree and the solution no
-longer changes (``CONVERGED`` of its size).
+condition number above ``newton_euler.COND_LIMIT`` is a singular position.  With losses
+the matrix depends on the sign s of each slider's and disc's N and on the direction e of
+each friction circle's R (``friction``); ``coulomb`` gives the answer reached by raising
+the losses from zero, refuses the driver values where they lock the mechanism, and names
+the other answers they admit (wedging) in a warning.
 """
 from __future__ import annotations
 
@@ -14,18 +14,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.errors import Caution, SingularError, SolveError, StructureError
+from linkcli.errors import Caution, StructureError
 from linkcli.kinematics.closed_form import where_text
-from linkcli.forces import friction
+from linkcli.forces import coulomb, friction
 from linkcli.forces.newton_euler import System
 from linkcli.forces.pairs import PairForce
-
-COND_LIMIT = 1e12
-#: the losses' iterate has converged when no unknown changes by more than this fraction of
-#: the largest (scaled); the error left is of the order of its square
-CONVERGED = 1e-10
-#: iterates before the losses are declared self-locking
-MAX_ITERATIONS = 60
 
 
 @dataclass
@@ -37,7 +30,7 @@ class Reactions:
     pins: dict = field(default_factory=dict)     # (point, body) -> force of the pin on the body
     pairs: dict = field(default_factory=dict)    # name -> PairForce
     unknown: object = None                       # value of the unknown load (SI)
-    cautions: list = field(default_factory=list)  # contacts that pull: they lift off
+    cautions: list = field(default_factory=list)  # contacts that lift off, other answers
     loads: dict = field(default_factory=dict)    # every load's value (SI)
     resistances: dict = field(default_factory=dict)  # disc slider -> rolling resistance couple
     pin_couples: dict = field(default_factory=dict)  # pin -> friction couple on its ``other``
@@ -56,78 +49,14 @@ def solve(mech, kin) -> Reactions:
     system = System(mech, dyn, kin)
     rhs = -system.known()
     losses = friction.losses_at(mech, kin)
-    x, losses = _solve_with_losses(system, rhs, losses)
-    return _unpack(system, x, losses)
-
-
-def _solve_with_losses(system, rhs, losses):
-    """x with the signs s of the normal forces and the directions e of the friction circles'
-    forces consistent with the solution: s = +1 and e = 0 first, then s = sgn N and
-    e = R / |R|; no consistent solution within ``MAX_ITERATIONS`` is self-locking."""
     if not losses.any:
-        return _solve_stack(system, system.matrix(losses), rhs), losses
-    previous = None
-    for _ in range(MAX_ITERATIONS):
-        x = _solve_stack(system, system.matrix(losses), rhs)
-        normals = {k: system.value(x, ("pair", k[1], 1 if k[0] == "disc" else 0))
-                   for k in losses.signs}
-        forces = {p: _pin_force(system, x, p, pin.other) for p, pin in losses.pins.items()}
-        new, kept = friction.update(losses, normals, forces)
-        if kept and (not losses.pins or _settled(system, x, previous)):
-            return x, losses
-        losses, previous = new, x
-    raise SolveError("the friction forces admit no consistent joint forces here "
-                     "(self-locking): " + _losses_text(losses), file=system.mech.file,
-                     hint="reduce the friction coefficients, rolling resistances or friction "
-                     "circles, or check the directions")
-
-
-def _losses_text(losses) -> str:
-    parts = [f"mu = {mu:g} at slider {s}" for s, mu in losses.sliders.items()]
-    parts += [f"rolling resistance {d.resistance:g} m of disc {d.name}"
-              for d in losses.discs.values()]
-    parts += [f"friction circle {pin.radius:g} m at pin {p}" for p, pin in losses.pins.items()]
-    return ", ".join(parts)
-
-
-def _pin_force(system, x, point, body):
-    """R: the force of pin ``point`` on ``body``."""
-    return system.value(x, ("pin", (point, body), 0)) + \
-        1j * system.value(x, ("pin", (point, body), 1))
-
-
-def _settled(system, x, previous) -> bool:
-    """No unknown changed by more than CONVERGED of the largest, in scaled units."""
-    if previous is None:
-        return False
-    _, cols = system.scales()
-    new, old = x / cols, previous / cols
-    size = np.max(np.abs(new), axis=-1)
-    return bool(np.all(np.max(np.abs(new - old), axis=-1) <= CONVERGED * size))
-
-
-def _solve_stack(system, a, rhs):
-    """x from (R A C) y = R rhs, x = C y, with the row and column scales R, C."""
-    rows, cols = system.scales()
-    scaled = a * rows[:, None] * cols[None, :]
-    _require_regular(system, scaled)
-    y = np.linalg.solve(scaled, (rhs * rows)[..., None])[..., 0]
-    return y * cols
-
-
-def _require_regular(system, scaled):
-    """Refuse non-finite matrices and condition numbers above ``COND_LIMIT``."""
-    if not np.all(np.isfinite(scaled)):
-        raise SingularError("the reactions are undefined here (non-finite geometry)",
-                            file=system.mech.file)
-    cond = np.linalg.cond(scaled)
-    if np.any(~np.isfinite(cond) | (cond > COND_LIMIT)):
-        worst = float(np.max(np.where(np.isfinite(cond), cond, np.inf)))
-        raise SingularError(
-            "the joint reactions are not determined at this position (the Newton-Euler system "
-            f"is singular: dimensionless condition number {worst:.2e})", file=system.mech.file,
-            measure=1.0 / worst if worst > 0 else 0.0,
-            hint="a toggle position, or a structure whose forces are statically indeterminate")
+        return _unpack(system, system.solve(system.matrix(losses), rhs), losses)
+    matrix = coulomb.LossMatrix(system, losses)
+    x, losses = coulomb.continued(system, rhs, losses, matrix)
+    out = _unpack(system, x, losses)
+    out.cautions += [coulomb.other_caution(system, x, losses, *other)
+                     for other in coulomb.others(system, rhs, losses, matrix)[:1]]
+    return out
 
 
 def _unpack(system, x, losses) -> Reactions:

@@ -23,12 +23,19 @@ pin (and -M on the body the pin is fixed in) in the columns of R's x and y.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
+from linkcli.errors import SingularError
 from linkcli.forces import motion as dyn_mod
 from linkcli.kinematics.dyads import cross
 from linkcli.model.mechanism import FRAME
 from linkcli.forces.pairs import actuator_axis, located_pairs, unit
+
+
+#: a dimensionless condition number above COND_LIMIT is a singular position
+COND_LIMIT = 1e12
 
 
 class System:
@@ -225,6 +232,67 @@ class System:
     def value(self, x, column):
         """The solution's component for ``column`` at every driver value."""
         return x[..., self.index[column]]
+
+    # --- solving --------------------------------------------------------------------------
+    def scaled(self, a):
+        """R A C with the row and column scales R, C (:meth:`scales`): dimensionless."""
+        rows, cols = self.scales()
+        return a * rows[:, None] * cols[None, :]
+
+    def solve(self, a, rhs, check=True):
+        """x from (R A C) y = R rhs, x = C y at every driver value (:meth:`solve_scaled`)."""
+        return self.solve_scaled(self.scaled(a), rhs, check)
+
+    def solve_scaled(self, scaled, rhs, check=True):
+        """x from the scaled matrix R A C: (R A C) y = R rhs, x = C y; ``check`` refuses a
+        singular matrix (:meth:`require_regular`), else an exactly singular one is solved as
+        the identity (its x is no answer: the caller leaves it out)."""
+        rows, cols = self.scales()
+        if check:
+            self.require_regular(scaled)
+        try:
+            y = np.linalg.solve(scaled, (rhs * rows)[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            scaled = np.where(self.regular(scaled)[..., None, None], scaled,
+                              np.eye(scaled.shape[-1]))
+            y = np.linalg.solve(scaled, (rhs * rows)[..., None])[..., 0]
+        return y * cols
+
+    def regular(self, scaled):
+        """At each driver value: whether the scaled matrix is finite and not singular to
+        rounding (its determinant's magnitude at least eps; the entries are of order 1)."""
+        sign, logdet = self._slogdet(scaled)
+        return (sign != 0) & (logdet > math.log(np.finfo(float).eps))
+
+    def side(self, scaled):
+        """The sign of det (R A C) at every driver value (0 where singular or not finite):
+        which side of a singular A the matrix is on."""
+        return self._slogdet(scaled)[0]
+
+    @staticmethod
+    def _slogdet(scaled):
+        """(sign, log |det|) of each matrix, (0, -inf) where one is not finite."""
+        finite = np.all(np.isfinite(scaled), axis=(-2, -1))
+        if finite.all():
+            return np.linalg.slogdet(scaled)
+        sign, logdet = np.linalg.slogdet(np.where(finite[..., None, None], scaled,
+                                                  np.eye(scaled.shape[-1])))
+        return np.where(finite, sign, 0.0), np.where(finite, logdet, -np.inf)
+
+    def require_regular(self, scaled):
+        """Refuse non-finite matrices and condition numbers above ``COND_LIMIT``."""
+        if not np.all(np.isfinite(scaled)):
+            raise SingularError("the reactions are undefined here (non-finite geometry)",
+                                file=self.mech.file)
+        cond = np.linalg.cond(scaled)
+        if np.any(~np.isfinite(cond) | (cond > COND_LIMIT)):
+            worst = float(np.max(np.where(np.isfinite(cond), cond, np.inf)))
+            raise SingularError(
+                "the joint reactions are not determined at this position (the Newton-Euler "
+                f"system is singular: dimensionless condition number {worst:.2e})",
+                file=self.mech.file, measure=1.0 / worst if worst > 0 else 0.0,
+                hint="a toggle position, or a structure whose forces are statically "
+                "indeterminate")
 
 
 def _crank(mech) -> str:

@@ -12,8 +12,9 @@ from linkcli.model.mechanism import split_rate
 from linkcli.model.units import FORCE
 
 
-def loads_at(mech, solver, kin, names):
-    """SI values of every load, solving the unknown one when a load is asked for."""
+def loads_at(mech, solver, kin, names, context=None):
+    """SI values of every load, solving the unknown one when a load is asked for (with
+    losses, from the joint forces of ``context``, solved once for every answer)."""
     wanted = any(mech.quantities.get(split_rate(n)[0]) is not None
                  and mech.quantities[split_rate(n)[0]].kind == "load" for n in names)
     if not wanted:
@@ -24,7 +25,10 @@ def loads_at(mech, solver, kin, names):
     extra = 0.0
     if mech.dynamics is not None:   # inertia, gravity, friction (d'Alembert)
         from linkcli.forces.balance import dynamic_power
-        extra = dynamic_power(mech, kin, unit_kin)
+        from linkcli.forces.friction import has_losses
+        reactions = context.reactions() if context is not None and \
+            has_losses(mech.dynamics) else None
+        extra = dynamic_power(mech, kin, unit_kin, reactions)
     values[unknown.name] = unknown_load(mech, kin.pos, unit_kin.vel, extra_power=extra,
                                         q=kin.q)
     return values

@@ -216,7 +216,8 @@ class Plan:
         result = self.collect(mech, solver, solved(solver, order, *driver))
         if q is None:       # the file's own position: what the figure check says of it
             from linkcli.answers.validate import figure_cautions
-            result.cautions = figure_cautions(mech) if self.method == "closed" else []
+            result.cautions = (figure_cautions(mech) if self.method == "closed" else []) + \
+                result.cautions
         return result
 
     @property
@@ -313,8 +314,8 @@ class Plan:
         shape = np.shape(kin.q)
         if len(kin.coords) > 1 and kin.shape != shape:     # coordinates of several shapes
             return _collect_each(mech, solver, kin, self.names, result)
-        loads = loads_at(mech, solver, kin, self.names) if self.wants_loads else {}
-        context = Context(mech, solver, kin) if self.generic else None
+        context = Context(mech, solver, kin) if self.generic or self.wants_loads else None
+        loads = loads_at(mech, solver, kin, self.names, context) if self.wants_loads else {}
         table = np.empty((len(self.names),) + shape)
         for kernel in self.kernels:
             kernel(kin, table)
@@ -331,6 +332,8 @@ class Plan:
             result.units[p] = l_unit
         if self.points:
             _require_finite(mech, {p: xy for p, xy in result.points.items()})
+        if context is not None:
+            result.cautions += context.cautions()
         return result
 
 

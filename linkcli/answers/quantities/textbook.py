@@ -53,6 +53,12 @@ class Context:
         from linkcli.forces.joint_forces import solve
         return self._once("reactions", lambda: solve(self.mech, self.kin))
 
+    def cautions(self) -> list:
+        """The warnings of what was solved: the joint forces' (a contact that lifts off,
+        another answer the friction admits), when they were."""
+        reactions = self._cache.get("reactions")
+        return list(reactions.cautions) if reactions is not None else []
+
     def unit(self):
         """The velocities for a unit driver rate (q' = 1) at the same positions."""
         return self._once("unit", lambda: self._solver().velocities(

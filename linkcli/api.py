@@ -11,8 +11,10 @@ so the model itself never imports a solver.
 """
 from __future__ import annotations
 
+from linkcli.answers.limits import sweep_names
 from linkcli.answers.quantities import Result
 from linkcli.answers.sheet import evaluate
+from linkcli.answers.sweep import Sweep, sweep
 from linkcli.errors import LinkcliError
 from linkcli.input.document import build
 from linkcli.input.source import load_file, load_text
@@ -48,6 +50,22 @@ class Linkage:
         (relative tolerance ``tol``) instead of the closed form of the groups.
         """
         return evaluate(self.model, q, qdot, qddot, names=names, method=method, tol=tol)
+
+    def sweep(self, q, qdot=None, qddot=None, *, names=None, method="closed",
+              tol=None) -> Sweep:
+        """Solve at every driver value of the 1-D array ``q`` (display units), keeping the
+        values that solve where others do not (:meth:`solve` refuses the whole array).
+
+        Returns a :class:`linkcli.answers.sweep.Sweep`: ``solved`` marks the driver values
+        answered, ``values`` maps each name (default: the report's, without its limits of
+        the motion) to its values there, in ``units``; ``issues`` names what happened at
+        each of the others (a range that cannot be assembled, a toggle, a friction that
+        locks the mechanism, an unknown load that does no work, a pair at rest: ``kind``,
+        ``group``, driver values ``lo``..``hi``, ``text()``) and the branch points passed.
+        ``qdot`` and ``qddot`` are one value each (default the file's); raises only where
+        no driver value at all can be assembled, or on invalid input.
+        """
+        return sweep(self.model, q, sweep_names(self.model, names), method, tol, qdot, qddot)
 
 
 def jit(on: bool = True) -> bool:

@@ -121,3 +121,44 @@ def test_api_sweep_keeps_rows_and_reports():
     assert result.solved.sum() == len(next(iter(result.values.values())))
     assert result.solved.sum() < 73 and result.issues
     assert all(np.all(np.isfinite(v)) for v in result.values.values())
+
+
+# --- rows where the friction locks the mechanism ----------------------------------------------
+SELF_LOCKING = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data",
+                            "sweep-selflocking.yaml")
+
+
+def test_a_sweep_leaves_out_the_rows_where_the_friction_locks_the_mechanism(capsys):
+    """The friction locks this slider-rocker for q = 75..95 mm: the sweep exited 3 with no
+    row at all, though 60-70 and 100-110 solve one by one; those rows are printed (the
+    values each gives alone) and the others named, as at-rest rows are."""
+    code, out, err = _run(capsys, SELF_LOCKING, "--names", "Mu", "--from", "60", "--to", "110",
+                          "--steps", "10")
+    assert code == 0
+    rows = [line.split(",") for line in out.splitlines()[1:]]
+    assert [float(q) for q, _ in rows] == [60, 65, 70, 100, 105, 110]
+    link = linkcli.load(SELF_LOCKING)
+    for q, value in rows:
+        alone = link.solve(q=float(q), names=["Mu"]).values["Mu"]
+        assert float(value) == pytest.approx(float(alone), rel=1e-12, abs=1e-12)
+    assert "the friction locks the mechanism for q in [75, 95] mm (self-locking" in err
+    assert "rows left out" in err
+
+
+def test_the_api_sweep_gives_the_rows_that_solve_and_names_the_others():
+    """Linkage.solve refuses a whole array when some driver values lock; Linkage.sweep keeps
+    the others, with the failures as structured issues (never NaN)."""
+    from linkcli.errors import SelfLockingError
+    link = linkcli.load(SELF_LOCKING)
+    q = np.linspace(60, 110, 11)
+    with pytest.raises(SelfLockingError) as caught:
+        link.solve(q=q, names=["Mu"])
+    assert np.array_equal(np.nonzero(caught.value.rows)[0], np.arange(3, 8))
+    got = link.sweep(q, names=["Mu"])
+    assert np.array_equal(got.solved, ~caught.value.rows)
+    assert np.all(np.isfinite(got.values["Mu"])) and got.values["Mu"].size == 6
+    assert got.units["Mu"] == "Nm"
+    (issue,) = [i for i in got.issues if i.kind != "branch"]
+    assert (issue.kind, issue.lo, issue.hi, issue.count) == ("self-locking", 75.0, 95.0, 5)
+    assert np.allclose(got.values["Mu"], link.solve(q=q[got.solved], names=["Mu"]).values["Mu"],
+                       rtol=1e-12, atol=0)

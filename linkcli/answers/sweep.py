@@ -35,7 +35,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.errors import AtRestError, NoWorkError, AssemblyError, InputError, SolveError
+from linkcli.errors import AtRestError, NoWorkError, AssemblyError, InputError, SelfLockingError, \
+    SolveError
 from linkcli.kinematics import toggles
 from linkcli.kinematics.closed_form import SINGULAR, Kinematics
 from linkcli.kinematics.topology import Dist, Line
@@ -68,7 +69,8 @@ def listing(names, limit: int = LISTED) -> str:
 class Issue:
     """A range of driver values (display units) where something must be said."""
 
-    kind: str            # 'assembly' | 'singular' | 'branch'
+    kind: str            # 'assembly' | 'singular' | 'branch' | 'no-work' | 'at-rest' |
+    #                      'self-locking'
     group: str
     lo: float
     hi: float
@@ -91,6 +93,9 @@ class Issue:
         if self.kind == "no-work":
             return (f"the unknown load {self.group} does no work {where} (a dead centre for "
                     f"it: coefficient {self.amount:.1e} of the largest load's); rows left out")
+        if self.kind == "self-locking":
+            return (f"the friction locks the mechanism {where} (self-locking, with "
+                    f"{self.group}); rows left out")
         if self.kind == "at-rest":
             return (f"{self.group} is undetermined {where}: its pair is at rest (relative "
                     f"rate {self.amount:.1e} of the largest), so the sense of the loss is "
@@ -368,12 +373,13 @@ class Sweeper:
             try:
                 result = self.evaluation.collect(self.mech, self.solver, sub)
                 break
-            except (NoWorkError, AtRestError) as exc:   # rows without an answer
+            except (NoWorkError, AtRestError, SelfLockingError) as exc:   # rows without one
                 dead = np.broadcast_to(np.asarray(exc.rows, bool), sub.q.shape)
                 if not dead.any():
                     raise
                 kind, name = ("no-work", exc.load) if isinstance(exc, NoWorkError) else \
-                    ("at-rest", exc.what)
+                    ("at-rest", exc.what) if isinstance(exc, AtRestError) else \
+                    ("self-locking", exc.what)
                 for a, b in _runs(dead):
                     self._add_run(kind, -1, start + alive[a], start + alive[b],
                                   q[rows[alive[a]]], q[rows[alive[b]]], exc.measure, min)

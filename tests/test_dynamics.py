@@ -488,3 +488,19 @@ def test_masses_on_actuators_ternary_links_and_blocks_energy_method(case):
     static = linkcli.load(os.path.join(MECHANISMS, case[0]))
     assert abs(float(mech.solve(names=["Q"]).values["Q"]) -
                float(static.solve(names=["Q"]).values["Q"])) > 1.0
+
+
+@pytest.mark.parametrize("name", ["disc-centre-floor-first.yaml", "disc-centre-slot-first.yaml"])
+def test_a_disc_centre_on_a_floor_and_in_a_slot_in_either_order(name):
+    """The disc's centre P rides on the floor y = 0 and in a slot along the crank AB: the disc
+    rolls on the floor whichever slider the file lists first (the slot first was refused as
+    'runs on a guide carried by crank', the floor first accepted).  With A at height h = 0.1 m
+    on x = 0, x_P = -h cot q, so v_P = h qdot / sin^2 q and a_P = -2 h qdot^2 cos q / sin^3 q
+    (qddot = 0); only the disc has mass and P stays at its height, so T qdot = d/dt of
+    (m + J / r^2) v_P^2 / 2."""
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "data", name)
+    h, q, qdot = 0.1, math.radians(-45), math.radians(10)
+    v = h * qdot / math.sin(q) ** 2
+    a = -2 * h * qdot ** 2 * math.cos(q) / math.sin(q) ** 3
+    mass = 2 + 0.0025 / 0.05 ** 2
+    assert linkcli.load(path).solve().values["T"] == pytest.approx(mass * v * a / qdot, rel=1e-9)

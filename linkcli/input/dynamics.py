@@ -156,11 +156,13 @@ class DynamicsReader:
         spec = self.p.mapping(value, path, {"center", "radius", "mass", "inertia", "side",
                                             "rolling_resistance"}, ("center", "radius"))
         center = self.p.name(spec["center"], path + ("center",), set(self.mech.points))
-        block = next((b for b in self.mech.bodies.values()
-                      if b.kind == "block" and b.points[0] == center), None)
-        if block is None or block.guide.carrier != FRAME:
-            where = "is not on a line" if block is None else \
-                f"runs on a guide carried by {block.guide.carrier}, not on a fixed line"
+        blocks = [b for b in self.mech.bodies.values()
+                  if b.kind == "block" and b.points[0] == center]
+        block = next((b for b in blocks if b.guide.carrier == FRAME), None)   # in any order
+        if block is None:
+            where = "is not on a line" if not blocks else "runs on " + " and on ".join(
+                f"a guide carried by {b.guide.carrier} (slider {b.name})" for b in blocks) + \
+                ", not on a fixed line"
             raise self.p.error(path + ("center",), f"rolling disc {name}: centre {center} {where}",
                                hint=f"make {center} the point of a slider on a fixed guide: "
                                "the line the centre runs on, parallel to the ground")

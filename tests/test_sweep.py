@@ -143,6 +143,10 @@ def test_a_sweep_leaves_out_the_rows_where_the_friction_locks_the_mechanism(caps
         assert float(value) == pytest.approx(float(alone), rel=1e-12, abs=1e-12)
     assert "the friction locks the mechanism for q in [75, 95] mm (self-locking" in err
     assert "rows left out" in err
+    code, out, _ = _run(capsys, SELF_LOCKING, "--names", "Mu", "--from", "60", "--to", "110",
+                        "--steps", "10", "--format", "json")
+    (issue,) = [i for i in json.loads(out)["issues"] if i["kind"] == "self-locking"]
+    assert code == 0 and (issue["from"], issue["to"], issue["positions"]) == (75, 95, 5)
 
 
 def test_the_api_sweep_gives_the_rows_that_solve_and_names_the_others():

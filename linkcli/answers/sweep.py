@@ -310,6 +310,7 @@ class Sweeper:
     def _add_run(self, kind, index, first, last, q_lo, q_hi, amount, worse):
         """Report rows first..last (indices that run on across blocks) of ``kind``,
         joining a run that goes on from the previous block."""
+        first, last, q_lo, q_hi = int(first), int(last), float(q_lo), float(q_hi)
         key = (kind, index)
         previous = self._open.get(key)
         if previous is not None and previous[1] == first - 1:

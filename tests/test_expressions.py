@@ -63,12 +63,12 @@ def test_refused_expressions(text, words):
 
 
 def test_huge_power_is_refused_quickly():
-    start = time.perf_counter()
+    start = time.process_time()
     for text in ("9**9**9", "(9**9)**(9**9)", "10**10**10", "2**100000"):
         with pytest.raises(ExpressionError) as info:
             evaluate(text)
         assert "too large" in str(info.value) or "overflow" in str(info.value)
-    assert time.perf_counter() - start < 0.5
+    assert time.process_time() - start < 0.5
 
 
 @pytest.mark.parametrize("text", [
@@ -79,10 +79,10 @@ def test_huge_power_is_refused_quickly():
     "1" * 5000,                       # very long input
 ])
 def test_long_or_deep_input_is_refused(text):
-    start = time.perf_counter()
+    start = time.process_time()
     with pytest.raises(ExpressionError) as info:
         evaluate(text)
-    assert time.perf_counter() - start < 0.5
+    assert time.process_time() - start < 0.5
     message = str(info.value)
     assert any(w in message for w in ("longer than", "too deep", "cannot parse")), message
 

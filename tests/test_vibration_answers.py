@@ -341,3 +341,59 @@ def test_a_refused_stiffness_shows_its_value_and_its_expression(tmp_path, capsys
     assert main(["solve", str(file)]) == 2
     err = capsys.readouterr().err
     assert "springs.s.k" in err and "-2 N/m (= kk - 5)" in err
+
+
+# --- 7. pictures -------------------------------------------------------------------------
+def _inside(fig, artist, ax) -> bool:
+    """Whether ``artist``'s drawn box lies within ``ax``'s (in pixels)."""
+    renderer = fig.canvas.get_renderer()
+    box, frame = artist.get_window_extent(renderer), ax.get_window_extent(renderer)
+    return (box.x0 >= frame.x0 - 1 and box.x1 <= frame.x1 + 1
+            and box.y0 >= frame.y0 - 1 and box.y1 <= frame.y1 + 1)
+
+
+def test_the_frequency_response_has_an_axis_per_unit_and_labelled_markers():
+    """A pendulum (deg) and a slider (mm), marked natural frequencies near both ends."""
+    pytest.importorskip("matplotlib")
+    from linkcli.pictures.vibration import frf_figure
+    mech = linkcli.load(os.path.join(os.path.dirname(DATA), "..", "..", "mechanisms",
+                                     "polimi-2001-02-07-vibration.yaml")).model
+    fig = frf_figure(mech, "1:50.5:400", None)
+    fig.canvas.draw()
+    amp_deg, amp_mm, phase_ax = fig.axes
+    assert amp_deg.get_ylabel() == "amplitude [deg]" and amp_mm.get_ylabel() == "amplitude [mm]"
+    assert phase_ax.get_ylabel() == "phase [deg]"
+    assert [t.get_text() for t in amp_deg.get_legend().get_texts()] == ["|theta|"]
+    assert [t.get_text() for t in amp_mm.get_legend().get_texts()] == ["|x|"]
+    marks = [t for t in amp_deg.texts if t.get_text().startswith("omega")]
+    assert [t.get_text() for t in marks] == ["omega1 = 1.562 rad/s", "omega2 = 49.94 rad/s"]
+    assert all(_inside(fig, t, amp_deg) for t in marks)
+    # undamped, past both resonances: x in opposition (-180), as solve's phase says
+    x_phase = phase_ax.get_lines()[1].get_ydata()
+    assert x_phase[-1] == pytest.approx(-180.0)
+
+
+def test_the_modes_have_a_legend_axis_labels_and_a_visible_displacement():
+    pytest.importorskip("matplotlib")
+    from linkcli.pictures import vibration as pictures
+    mech = linkcli.load(path("symmetric_chain_mode.yaml")).model
+    fig = pictures.modes_figure(mech)
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert labels == ["equilibrium", "+ mode shape", "- mode shape"]
+    assert "displacements scaled" in fig.legends[0].get_title().get_text()
+    rest = {"P1": 100.0, "P2": 200.0, "P3": 300.0}
+    dots = []
+    for k, ax in enumerate(fig.axes):
+        assert ax.get_xlabel() == "x [mm]" and ax.get_ylabel() == "y [mm]"
+        assert ax.get_title().startswith(f"mode {k + 1}: omega = ")
+        # the '+' pose's dots: the farthest moved by a fifth of the drawing's extent (the
+        # walls 400 mm apart), so 80 mm, not a hairline
+        dots.append({line.get_gid(): float(line.get_xdata()[0]) - rest[line.get_gid()]
+                     for line in ax.get_lines() if line.get_color() == pictures.PLUS
+                     and line.get_marker() == "o"})
+        assert max(map(abs, dots[k].values())) == pytest.approx(
+            pictures.MODE_SCALE * 400.0, rel=1e-9)
+    # mode 2 is (1, 0, -1) in (x1, x2, x3): the middle mass has no dot, the others opposed
+    assert sorted(dots[1]) == ["P1", "P3"]
+    assert dots[1]["P1"] == pytest.approx(-dots[1]["P3"], rel=1e-9)
+    assert "x2 does not move" in fig.axes[1].get_title()

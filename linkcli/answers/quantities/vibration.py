@@ -376,7 +376,7 @@ def _steady(analysis, quantity) -> Answer:
     if kind == "amplitude":
         return Answer(float(abs(amp)), dim)
     if kind == "phase":
-        return Answer(phase(amp), ANGLE_DIM, "angle")
+        return Answer(float(phase(amp)), ANGLE_DIM, "angle")
     # transmissibility: |response| / |imposed amplitude|
     if not lin.imposed:
         raise InputError(f"'{quantity.name}': a transmissibility needs a support motion",
@@ -388,15 +388,13 @@ def _steady(analysis, quantity) -> Answer:
                   dim / coordinate_dim(mech, lin.imposed[support]))
 
 
-def phase(amplitude) -> float:
-    """The phase of a complex amplitude against the excitation (rad), in [-pi, pi): negative
+def phase(amplitude):
+    """The phase of complex amplitudes against the excitation (rad), in [-pi, pi): negative
     when the response lags.  A response in opposition is -pi whatever the sign of its zero
     imaginary part, the limit of a vanishing damping (the response of one degree of
-    freedom lags by 0 to 180 deg)."""
-    value = float(np.angle(amplitude))
-    if value >= math.pi * (1 - 1e-12):
-        value -= 2 * math.pi
-    return value + 0.0
+    freedom lags by 0 to 180 deg); 0 is never -0."""
+    value = np.angle(amplitude)
+    return np.where(value >= math.pi * (1 - 1e-12), value - 2 * math.pi, value) + 0.0
 
 
 def _force_amplitude(analysis, quantity, X) -> Answer:
@@ -517,6 +515,23 @@ def explain_lines(mech) -> list:
     return lines + _mode_lines(analysis, found)
 
 
+def shape_text(analysis, k) -> str:
+    """Mode k's shape as 'x1 1, theta 0.0602 deg/mm' in the file's units (each coordinate
+    over the reference, the first free one), and a note where the reference does not move
+    (the shape is then scaled to its largest component)."""
+    mech = analysis.mech
+    lin = analysis.lin
+    found = analysis.modes()
+    names = lin.names
+    ref = vib.REFERENCE
+    ref_dim = coordinate_dim(mech, lin.free[ref])
+    parts = [f"{names[i]} " + _text(mech.units, Answer(
+        float(found.shapes[i, k]), coordinate_dim(mech, lin.free[i]) / ref_dim))
+        for i in range(len(names))]
+    note = "" if found.moves(ref, k) else f" ({names[ref]} does not move: scaled to the largest)"
+    return ", ".join(parts) + note
+
+
 def _mode_lines(analysis, found) -> list:
     """The natural frequencies and mode shapes, and the damping of each mode."""
     mech = analysis.mech
@@ -526,17 +541,11 @@ def _mode_lines(analysis, found) -> list:
     ref = vib.REFERENCE
     lines = ["", f"Natural frequencies and modes (K u = omega^2 M u; shapes normalised by "
              f"{free_names[ref]} = 1)"]
-    ref_dim = coordinate_dim(mech, lin.free[ref])
     for k, w in enumerate(found.omega):
         freq = _text(units, Answer(float(w), FREQUENCY_DIM, "frequency"))
         if units.names["frequency"] != "Hz":
             freq += f" = {w / (2 * np.pi):.6g} Hz"
-        parts = [f"{free_names[i]} " + _text(units, Answer(
-            float(found.shapes[i, k]), coordinate_dim(mech, lin.free[i]) / ref_dim))
-            for i in range(len(free_names))]
-        note = "" if found.moves(ref, k) else \
-            f" ({free_names[ref]} does not move: scaled to the largest)"
-        lines.append(f"  mode {k + 1}: omega = {freq}; shape {', '.join(parts)}{note}")
+        lines.append(f"  mode {k + 1}: omega = {freq}; shape {shape_text(analysis, k)}")
     if not mech.elements.dampers:
         return lines
     d = analysis.damped()

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import os
+import sys
 
 import numpy as np
 import pytest
@@ -16,7 +17,10 @@ import scipy.linalg as sla
 
 import linkcli
 from linkcli.cli import main
-from linkcli.errors import ModeError, SolveError
+from linkcli.errors import InputError, ModeError, SolveError
+
+sys.path.insert(0, os.path.dirname(__file__))
+from vibration_cases import chain, chain_omega, pendulums, pendulums_omega  # noqa: E402
 
 DATA = os.path.join(os.path.dirname(__file__), "data", "vibration")
 # exact definitions: in = 0.0254 m, lb = 0.45359237 kg, lbf = lb * 9.80665 m/s^2, ft = 0.3048 m
@@ -343,6 +347,49 @@ def test_a_refused_stiffness_shows_its_value_and_its_expression(tmp_path, capsys
     assert "springs.s.k" in err and "-2 N/m (= kk - 5)" in err
 
 
+# --- 6. size ----------------------------------------------------------------------------
+def test_a_long_chain_matches_its_closed_form():
+    """40 masses between walls: omega_j = 2 sqrt(k/m) sin(j pi / (2 (n + 1))); each point's
+    second derivatives are kept where they are not zero (none here)."""
+    values, _ = solved(chain(40))
+    assert [values["w1"], values["wn"]] == pytest.approx(chain_omega(40), rel=1e-9)
+
+
+def test_pendulums_end_to_end_match_their_linearised_matrices():
+    """8 rods hanging end to end: every pair of coordinates moves the last mass."""
+    values, _ = solved(pendulums(8))
+    assert [values["w1"], values["wn"]] == pytest.approx(pendulums_omega(8), rel=1e-9)
+
+
+def test_more_coordinates_than_the_bound_are_refused(monkeypatch):
+    from linkcli.answers.quantities import vibration
+    monkeypatch.setattr(vibration, "MAX_COORDINATES", 3)
+    with pytest.raises(InputError) as info:
+        linkcli.loads(chain(4)).solve()
+    assert info.value.key == "coordinates" and "at most 3" in str(info.value)
+
+
+def test_blocks_compute_as_the_full_arrays():
+    """Sums, products, in-place sums into an array and products with vectors of blocks
+    against the same operations on the full arrays."""
+    from linkcli.kinematics.jacobian import Block
+    rng = np.random.default_rng(7)
+    a = Block([1, 4], rng.standard_normal((2, 2)) + 1j * rng.standard_normal((2, 2)), 6)
+    b = Block([0, 4, 5], rng.standard_normal((3, 3)), 6)
+    A, B = np.asarray(a), np.asarray(b)
+    v = rng.standard_normal(6)
+    assert np.array_equal(np.asarray(a + b), A + B)
+    assert np.array_equal(np.asarray(a - b), A - B)
+    assert np.array_equal(np.asarray(np.float64(2.5) * a), 2.5 * A)
+    assert np.array_equal(np.asarray(np.real(np.conj(2j) * a)), np.real(-2j * A))
+    assert np.allclose(a @ v, A @ v, rtol=1e-15) and np.allclose(v @ a, v @ A, rtol=1e-15)
+    K = rng.standard_normal((6, 6))
+    expected = K - B
+    K -= b
+    assert np.array_equal(K, expected)
+    assert a[4, 1] == A[4, 1] and a[2, 3] == 0 and a[4][1] == A[4, 1]
+
+
 # --- 7. pictures -------------------------------------------------------------------------
 def _inside(fig, artist, ax) -> bool:
     """Whether ``artist``'s drawn box lies within ``ax``'s (in pixels)."""
@@ -358,7 +405,7 @@ def test_the_frequency_response_has_an_axis_per_unit_and_labelled_markers():
     from linkcli.pictures.vibration import frf_figure
     mech = linkcli.load(os.path.join(os.path.dirname(DATA), "..", "..", "mechanisms",
                                      "polimi-2001-02-07-vibration.yaml")).model
-    fig = frf_figure(mech, "1:50.5:400", None)
+    fig = frf_figure(mech, "1:50.5:120", None)
     fig.canvas.draw()
     amp_deg, amp_mm, phase_ax = fig.axes
     assert amp_deg.get_ylabel() == "amplitude [deg]" and amp_mm.get_ylabel() == "amplitude [mm]"

@@ -102,9 +102,7 @@ class Lagrangian:
         if m.kind == "along":
             return jac.along(jt, m.a, m.b, m.direction)
         a, b = jac.body_angle(self.mech, jt, m.a), jac.body_angle(self.mech, jt, m.b)
-        n = self.n
-        return jac.Scalar(b.value - a.value, [b.grad[i] - a.grad[i] for i in range(n)],
-                          [[b.hess[i][j] - a.hess[i][j] for j in range(n)] for i in range(n)])
+        return jac.Scalar(b.value - a.value, b.grad - a.grad, b.hess - a.hess)
 
     def masses(self, jt) -> list:
         out = []
@@ -120,8 +118,7 @@ class Lagrangian:
             u = u / abs(u)
             roll = jac.along(jt, None, disc.center, u)
             k = -disc.side / disc.radius      # omega = -s (v_C . u) / R
-            spin = jac.Scalar(k * roll.value, [k * g for g in roll.grad],
-                              [[k * h for h in row] for row in roll.hess])
+            spin = jac.Scalar(k * roll.value, k * roll.grad, k * roll.hess)
             out.append(Mass(disc.name, disc.mass, disc.inertia, jac.point(jt, disc.center),
                             spin))
         for p, mass in self.dyn.masses.items():
@@ -139,15 +136,13 @@ class Lagrangian:
         V = 0.0
         masses = self.masses(jt)
         g = self.dyn.gravity if self.dyn is not None else 0j
-        for m in masses:
+        for m in masses:            # arrays over the coordinates: one NumPy step per body
             G, Gi, Gij = m.g
-            for i in range(n):
-                Q[i] += m.mass * np.real(np.conj(g) * Gi[i])
-                for j in range(n):
-                    M[i, j] += m.mass * np.real(np.conj(Gi[i]) * Gi[j])
-                    K[i, j] -= m.mass * np.real(np.conj(g) * Gij[(i, j)])
-                    if m.theta is not None:
-                        M[i, j] += m.inertia * m.theta.grad[i] * m.theta.grad[j]
+            Q += m.mass * np.real(np.conj(g) * Gi)
+            M += m.mass * np.real(np.outer(np.conj(Gi), Gi))
+            K -= m.mass * np.real(np.conj(g) * Gij)
+            if m.theta is not None:
+                M += m.inertia * np.outer(m.theta.grad, m.theta.grad)
             V -= m.mass * float(np.real(np.conj(g) * G))
         measures, forces = {}, {}
         for spring in self.elements.springs.values():
@@ -155,10 +150,8 @@ class Lagrangian:
             force = spring.stiffness * (s.value - self.free[spring.name])
             forces[spring.name] = float(force)
             V += 0.5 * spring.stiffness * float(s.value - self.free[spring.name]) ** 2
-            for i in range(n):
-                Q[i] -= force * s.grad[i]
-                for j in range(n):
-                    K[i, j] += spring.stiffness * s.grad[i] * s.grad[j] + force * s.hess[i][j]
+            Q -= force * s.grad
+            K += spring.stiffness * np.outer(s.grad, s.grad) + force * s.hess
         for damper in self.elements.dampers.values():
             s = measures[damper.name] = self.measure(jt, damper.measure)
             R += damper.coefficient * np.outer(s.grad, s.grad)
@@ -206,17 +199,14 @@ class Lagrangian:
 
     def convective(self, terms: Terms, qd) -> np.ndarray:
         """c_i = sum m Re(conj(G_i) a0_G) + J theta_i alpha0, with a0 = sum_jk G_jk q'_j q'_k."""
-        n = self.n
-        c = np.zeros(n)
+        qd = np.asarray(qd, dtype=float)
+        c = np.zeros(self.n)
         for m in terms.masses:
             _, Gi, Gij = m.g
-            a0 = sum(Gij[(j, k)] * qd[j] * qd[k] for j in range(n) for k in range(n))
-            alpha0 = 0.0 if m.theta is None else \
-                sum(m.theta.hess[j][k] * qd[j] * qd[k] for j in range(n) for k in range(n))
-            for i in range(n):
-                c[i] += m.mass * np.real(np.conj(Gi[i]) * a0)
-                if m.theta is not None:
-                    c[i] += m.inertia * m.theta.grad[i] * alpha0
+            a0 = qd @ Gij @ qd
+            c += m.mass * np.real(np.conj(Gi) * a0)
+            if m.theta is not None:
+                c += m.inertia * m.theta.grad * (qd @ m.theta.hess @ qd)
         return c
 
     def potential(self, q) -> float:
@@ -224,8 +214,7 @@ class Lagrangian:
         q = np.asarray(q, dtype=float)
         kin = self.solver.positions(q[0] if self.n == 1 else tuple(q))
         pos = kin.pos
-        jt = jac.Jet(pos, [{} for _ in range(self.n)], n=self.n)
-        jt.second = {(i, j): {} for i in range(self.n) for j in range(i, self.n)}
+        jt = jac.Jet(pos, n=self.n)             # positions only: zero derivatives
         V = 0.0
         g = self.dyn.gravity if self.dyn is not None else 0j
         for m in self.masses(jt):

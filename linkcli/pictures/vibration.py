@@ -240,9 +240,8 @@ def _mode_scale(lag, q, shape, target):
     """The factor that moves the mode's farthest point by ``target`` (m)."""
     jt = lag.jet(q, second=False)
     largest = 0.0
-    for p in jt.pos:
-        moved = abs(sum(jt.d1(p, j) * shape[j] for j in range(lag.n)))
-        largest = max(largest, float(np.max(moved)))
+    for gradient in jt.grad.values():
+        largest = max(largest, float(np.max(np.abs(np.tensordot(shape, gradient, 1)))))
     return target / largest if largest > 0 else 0.0
 
 

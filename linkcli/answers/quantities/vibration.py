@@ -114,8 +114,21 @@ class Analysis:
         return self.cache["X"]
 
 
+#: the most coordinates a vibration analysis takes: its second derivatives are n (n + 1) / 2
+#: rates of the mechanism and its time grows as n^3 (benchmarks/vibration.py: a chain of 500
+#: masses takes about 10 times a chain of 200)
+MAX_COORDINATES = 500
+
+
 def analyse(mech) -> Analysis:
     """Equilibrium and linearisation of ``mech`` (SI)."""
+    count = len(mech.coordinates)
+    if count > MAX_COORDINATES:
+        raise InputError(f"{count} coordinates: a vibration analysis takes at most "
+                         f"{MAX_COORDINATES} (its second derivatives are n (n + 1) / 2 rates "
+                         "of the mechanism: its time grows as n^3)", file=mech.file,
+                         key="coordinates", hint="model the system with fewer degrees of "
+                         "freedom, a continuous one by its first modes")
     lag = Lagrangian(mech, solver_for(mech))
     return Analysis(mech, vib.linearise(lag))
 

@@ -27,6 +27,7 @@ import numpy as np
 from linkcli.answers.quantities import collect
 from linkcli.errors import InputError, ModeError, SolveError
 from linkcli.forces import vibration as vib
+from linkcli.forces.equilibrium import free_coordinates
 from linkcli.forces.lagrange import Lagrangian
 from linkcli.kinematics import jacobian as jac
 from linkcli.kinematics.solvers import solver_for
@@ -237,14 +238,56 @@ def _mode(analysis, quantity) -> int:
 
 
 def answer_of(analysis: Analysis, quantity) -> Answer:
-    """One vibration quantity in SI, with its dimension."""
+    """One vibration quantity in SI, with its dimension (:func:`dimension_of`)."""
+    mech = analysis.mech
+    dim, kind = dimension_of(mech, quantity)
+    turn = quantity.kind == "equilibrium" and dim == ANGLE_DIM
+    return Answer(si_value(analysis, quantity), dim, kind, turn)
+
+
+FREQUENCIES = ("natural_frequency", "damped_frequency", "forcing_frequency")
+
+
+def dimension_of(mech, quantity) -> tuple:
+    """(Dimension, kind of unit it is shown in or None) of a vibration quantity, from the
+    file alone: what ``Units.show`` needs to decide its unit."""
     kind = quantity.kind
-    if kind in ("natural_frequency", "damped_frequency", "forcing_frequency"):
-        return Answer(_frequency(analysis, quantity), FREQUENCY_DIM, "frequency")
+    if kind in FREQUENCIES:
+        return FREQUENCY_DIM, "frequency"
+    if kind == "damping_ratio":
+        return NONE, None
+    if kind == "phase":
+        return ANGLE_DIM, "angle"
+    if kind.endswith("_matrix"):
+        return matrix_dim(kind, mech, _coordinate(mech, quantity.a),
+                          _coordinate(mech, quantity.b)), None
+    if kind == "mode_shape":
+        reference = free_coordinates(mech)[vib.REFERENCE]
+        return (coordinate_dim(mech, _coordinate(mech, quantity.b))
+                / coordinate_dim(mech, reference)), None
+    if kind == "spring_force":
+        return _element_force(mech.elements.springs[quantity.a])
+    if kind == "force_amplitude":
+        return _elements_force(mech, quantity)
+    dim = LENGTH_DIM if quantity.component is not None else \
+        coordinate_dim(mech, _coordinate(mech, quantity.a))
+    if kind == "transmissibility":
+        supports = mech.elements.supports.values()
+        if supports:
+            support = max(supports, key=lambda item: abs(item.amplitude))
+            dim = dim / coordinate_dim(mech, support.coordinate)
+    return dim, None
+
+
+def si_value(analysis: Analysis, quantity) -> float:
+    """One vibration quantity in SI (rad/s, m, rad, N, kg ...)."""
+    kind = quantity.kind
+    if kind in FREQUENCIES:
+        return _frequency(analysis, quantity)
     if kind == "damping_ratio":
         k = _mode(analysis, quantity)
         _require_stiffness(analysis, quantity, k, "its damping ratio c / (2 sqrt(k m))")
-        return Answer(float(analysis.damped().zeta[k]), NONE)
+        return float(analysis.damped().zeta[k])
     if kind == "mode_shape":
         return _mode_shape(analysis, quantity)
     mech = analysis.mech
@@ -253,13 +296,11 @@ def answer_of(analysis: Analysis, quantity) -> Answer:
         i, j = _coordinate(mech, quantity.a), _coordinate(mech, quantity.b)
         matrix = {"mass_matrix": lin.eq.terms.M, "stiffness_matrix": lin.eq.terms.K,
                   "damping_matrix": lin.eq.terms.R}[kind]
-        return Answer(float(matrix[i, j]), matrix_dim(kind, mech, i, j))
+        return float(matrix[i, j])
     if kind == "equilibrium":
-        j = _coordinate(mech, quantity.a)
-        return _coordinate_answer(mech, j, lin.eq.q[j], turn=True)
+        return float(lin.eq.q[_coordinate(mech, quantity.a)])
     if kind == "spring_force":
-        spring = mech.elements.springs[quantity.a]
-        return Answer(float(lin.eq.terms.forces[quantity.a]), *_element_force(spring))
+        return float(lin.eq.terms.forces[quantity.a])
     if kind == "free_response":
         j = _free_index(analysis, quantity.a)
         x0 = np.zeros(len(lin.free))
@@ -267,8 +308,7 @@ def answer_of(analysis: Analysis, quantity) -> Answer:
         for c, (dx, dv) in mech.elements.initial.items():
             if c in lin.free:
                 x0[lin.free.index(c)], v0[lin.free.index(c)] = dx, dv
-        x = vib.free_response(lin, x0, v0, [quantity.time])[0, j]
-        return _coordinate_answer(mech, lin.free[j], x)
+        return float(vib.free_response(lin, x0, v0, [quantity.time])[0, j])
     return _steady(analysis, quantity)
 
 
@@ -325,7 +365,7 @@ def _require_stiffness(analysis, quantity, k, what) -> None:
                     "natural frequency")
 
 
-def _mode_shape(analysis, quantity) -> Answer:
+def _mode_shape(analysis, quantity) -> float:
     """Coordinate q of mode k over the reference coordinate (the first free one)."""
     mech = analysis.mech
     lin = analysis.lin
@@ -356,8 +396,7 @@ def _mode_shape(analysis, quantity) -> Answer:
                         hint=f"list first under 'coordinates:' a coordinate that moves in "
                         f"mode {k + 1}, such as {largest}: the shapes are normalised by the "
                         "first")
-    dim = coordinate_dim(mech, lin.free[i]) / coordinate_dim(mech, lin.free[ref])
-    return Answer(float(found.shapes[i, k]), dim)
+    return float(found.shapes[i, k])
 
 
 def _element_force(element) -> tuple:
@@ -367,7 +406,7 @@ def _element_force(element) -> tuple:
     return FORCE_DIM, "force"
 
 
-def _steady(analysis, quantity) -> Answer:
+def _steady(analysis, quantity) -> float:
     """Amplitude, phase, transmissibility of a coordinate or a point's x or y, or the
     amplitude of the force through springs and dampers, at the excitation frequency."""
     mech = analysis.mech
@@ -381,24 +420,19 @@ def _steady(analysis, quantity) -> Answer:
         direction = 1 + 0j if quantity.component == "x" else 1j
         s = jac.along(jt, None, quantity.a, direction)
         amp = np.dot(np.asarray(s.grad, dtype=float), X)
-        dim = LENGTH_DIM
     else:
-        j = _coordinate(mech, quantity.a)
-        amp = X[j]
-        dim = coordinate_dim(mech, j)
+        amp = X[_coordinate(mech, quantity.a)]
     if kind == "amplitude":
-        return Answer(float(abs(amp)), dim)
+        return float(abs(amp))
     if kind == "phase":
-        return Answer(float(phase(amp)), ANGLE_DIM, "angle")
+        return float(phase(amp))
     # transmissibility: |response| / |imposed amplitude|
     if not lin.imposed:
         raise InputError(f"'{quantity.name}': a transmissibility needs a support motion",
                          file=mech.file, key=f"quantities.{quantity.name}",
                          hint="for a harmonic force, ask force_amplitude of the springs and "
                          "dampers that hold the support, and divide by the force")
-    support = int(np.argmax(np.abs(lin.supports)))
-    return Answer(float(abs(amp) / abs(lin.supports[support])),
-                  dim / coordinate_dim(mech, lin.imposed[support]))
+    return float(abs(amp) / np.max(np.abs(lin.supports)))
 
 
 def phase(amplitude):
@@ -410,10 +444,9 @@ def phase(amplitude):
     return np.where(value >= math.pi * (1 - 1e-12), value - 2 * math.pi, value) + 0.0
 
 
-def _force_amplitude(analysis, quantity, X) -> Answer:
-    """|sum of k s' + i Omega c s'| over the elements (s' the amplitude of their measure)."""
-    mech = analysis.mech
-    lin = analysis.lin
+def _elements_force(mech, quantity) -> tuple:
+    """(dimension, kind) of the sum of the forces of a force amplitude's elements: torques
+    or forces, not both."""
     elements = {**mech.elements.springs, **mech.elements.dampers}
     kinds = {_element_force(elements[n]) for n in quantity.elements}
     if len(kinds) > 1:
@@ -422,6 +455,13 @@ def _force_amplitude(analysis, quantity, X) -> Answer:
                          "and some not (forces)", file=mech.file,
                          key=f"quantities.{quantity.name}",
                          hint="ask the torsional and the other elements apart")
+    return kinds.pop()
+
+
+def _force_amplitude(analysis, quantity, X) -> float:
+    """|sum of k s' + i Omega c s'| over the elements (s' the amplitude of their measure)."""
+    mech = analysis.mech
+    lin = analysis.lin
     total = 0j
     for name in quantity.elements:
         s = lin.eq.terms.measures[name]
@@ -430,7 +470,7 @@ def _force_amplitude(analysis, quantity, X) -> Answer:
         gain = spring.stiffness if spring is not None else \
             1j * lin.frequency * mech.elements.dampers[name].coefficient
         total += gain * ds
-    return Answer(float(abs(total)), *kinds.pop())
+    return float(abs(total))
 
 
 # --- explain ---------------------------------------------------------------------------

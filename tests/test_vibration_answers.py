@@ -405,7 +405,7 @@ def test_the_frequency_response_has_an_axis_per_unit_and_labelled_markers():
     from linkcli.pictures.vibration import frf_figure
     mech = linkcli.load(os.path.join(os.path.dirname(DATA), "..", "..", "mechanisms",
                                      "polimi-2001-02-07-vibration.yaml")).model
-    fig = frf_figure(mech, "1:50.5:120", None)
+    fig, _ = frf_figure(mech, "1:50.5:120", None)
     fig.canvas.draw()
     amp_deg, amp_mm, phase_ax = fig.axes
     assert amp_deg.get_ylabel() == "amplitude [deg]" and amp_mm.get_ylabel() == "amplitude [mm]"

@@ -23,13 +23,18 @@ from linkcli.forces import vibration as vib
 from linkcli.model.units import ANGLE_DIM
 from linkcli.pictures.drawing import (COLORS, draw_elements, draw_mechanism, figure,
                                       set_limits)
-from linkcli.pictures.plotting import IMAGE_FORMATS, _save_figure, _wrap, check_output, parse_sweep
+from linkcli.pictures.plotting import (IMAGE_FORMATS, _save_figure, _tell, _wrap, check_output,
+                                       parse_sweep)
 from linkcli.pictures.scene import Scene, actuators, links
 
 #: the farthest moving point of a mode is drawn displaced by this fraction of the size
 MODE_SCALE = 0.2
 #: the two displaced poses of a mode, and the pose at equilibrium
 PLUS, MINUS, REST = "#d62728", "#1f3a93", "0.55"
+# a free response integrates at most MAX_PERIODS periods of the highest natural frequency,
+# sampled at least SAMPLES_PER_PERIOD times each (fewer draw an aliased curve)
+MAX_PERIODS = 200
+SAMPLES_PER_PERIOD = 20
 
 
 def _require_vibration(mech, what):
@@ -58,15 +63,23 @@ def _unit(mech, j):
     return mech.units.show(coordinate_dim(mech, j))
 
 
-def frf(mech, span: str, names, output: str, dpi: int = 100) -> None:
-    """Amplitude and phase of coordinates ``names`` over the Omega values of ``span``."""
+def frf(mech, span: str, names, output: str, dpi: int = 100, notify=None) -> list:
+    """Amplitude and phase of coordinates ``names`` over the Omega values of ``span``.
+
+    An Omega where the undamped system is at resonance (the dynamic matrix singular) is a
+    break in the curves, and is named to ``notify`` (default: standard error); returns
+    those messages."""
     check_output(output, IMAGE_FORMATS)
-    _save_figure(frf_figure(mech, span, names, dpi), output)
+    fig, said = frf_figure(mech, span, names, dpi)
+    _tell(said, notify)
+    _save_figure(fig, output)
+    return said
 
 
 def frf_figure(mech, span: str, names, dpi: int = 100):
-    """The figure of :func:`frf`: one amplitude panel per unit of the picked coordinates,
-    then the phase, in [-180, 180) deg at the lowest Omega and continuous from there."""
+    """The figure of :func:`frf` and its messages: one amplitude panel per unit of the
+    picked coordinates, then the phase, in [-180, 180) deg at the lowest Omega of each
+    stretch between resonances and continuous along it."""
     _require_vibration(mech, "a frequency response")
     analysis = analyse(mech)
     lin = analysis.lin
@@ -74,12 +87,19 @@ def frf_figure(mech, span: str, names, dpi: int = 100):
         raise InputError("a frequency response needs an excitation", file=mech.file,
                          key="excitation", hint="give harmonic forces or a support motion")
     f_unit, f_factor = mech.units.show(FREQUENCY_DIM, "frequency")
-    omega = parse_sweep(span) * f_factor
+    x_axis = parse_sweep(span, key="--frf")
+    if x_axis.min() < 0:
+        raise InputError(f"frf '{span}': a forcing frequency cannot be negative, got "
+                         f"{x_axis.min():g} {f_unit}", key="--frf",
+                         hint="Omega runs from 0 up, e.g. --frf 0:60:600")
+    omega = x_axis * f_factor
     picked = _coordinates(mech, lin, names)
     D, singular = vib.dynamic_matrix(lin, omega)
-    regular = ~singular                          # undamped resonances are left out
-    X = np.linalg.solve(D[regular], lin.load(omega[regular])[..., None])[..., 0]
-    x_axis = omega[regular] / f_factor
+    regular = ~singular              # an undamped resonance: a break in the curve, named
+    X = np.full((omega.size, len(lin.free)), np.nan, dtype=complex)
+    X[regular] = np.linalg.solve(D[regular], lin.load(omega[regular])[..., None])[..., 0]
+    said = [f"{mech.file}: warning: Omega = {w:.6g} {f_unit} is an undamped resonance: the "
+            "amplitude is unbounded there, a break in the curves" for w in x_axis[singular]]
     panels = {}                                  # unit -> the coordinates shown in it
     for i in picked:
         panels.setdefault(_unit(mech, lin.free[i]), []).append(i)
@@ -97,9 +117,7 @@ def frf_figure(mech, span: str, names, dpi: int = 100):
     phase_ax = axes[-1]
     a_unit, a_factor = mech.units.show(ANGLE_DIM, "angle")
     for i in picked:
-        wrapped = phase(X[:, i])
-        continuous = np.unwrap(wrapped) if wrapped.size else wrapped
-        phase_ax.plot(x_axis, continuous / a_factor, color=colors[i], lw=1.4,
+        phase_ax.plot(x_axis, _phase(X[:, i]) / a_factor, color=colors[i], lw=1.4,
                       label=mech.coordinates[lin.free[i]].name)
     if a_unit == "deg":
         from matplotlib.ticker import MultipleLocator
@@ -112,7 +130,18 @@ def frf_figure(mech, span: str, names, dpi: int = 100):
         ax.grid(True, alpha=0.35)
     axes[0].set_title(_wrap(mech.title))
     fig.tight_layout()
-    return fig
+    return fig, said
+
+
+def _phase(x):
+    """The phase of ``x`` (rad) by solve's convention, [-pi, pi) at the start of each
+    stretch between breaks (NaN) and unwrapped along it."""
+    out = np.full(x.shape, np.nan)
+    rows = np.nonzero(np.isfinite(x))[0]
+    for part in np.split(rows, np.nonzero(np.diff(rows) != 1)[0] + 1):
+        if part.size:
+            out[part] = np.unwrap(phase(x[part]))
+    return out
 
 
 def _plain_if_narrow(ax, values):
@@ -255,10 +284,7 @@ def free(mech, span: str, names, output: str, dpi: int = 100) -> None:
     if not initial:
         raise InputError("a time response starts from 'initial:'", file=mech.file,
                          key="initial", hint="e.g. initial: {theta: 2, theta_dot: 0}")
-    t = parse_sweep(span)
-    if t[0] != 0 or t[-1] <= 0:
-        raise InputError(f"times '{span}' must run from 0 to a positive end", key="--free",
-                         hint="e.g. --free 0:5:2000 (seconds)")
+    t = _times(lin, span)
     x0 = np.array([initial.get(j, (0.0, 0.0))[0] for j in lin.free])
     v0 = np.array([initial.get(j, (0.0, 0.0))[1] for j in lin.free])
     linear = vib.free_response(lin, x0, v0, t)
@@ -278,3 +304,33 @@ def free(mech, span: str, names, output: str, dpi: int = 100) -> None:
     axes[0].set_title(_wrap(mech.title))
     fig.tight_layout()
     _save_figure(fig, output)
+
+
+def _times(lin, span):
+    """The times of ``--free 0:T:STEPS`` (s), refused where T holds more than MAX_PERIODS
+    periods of the highest natural frequency omega_max = max sqrt(|eig(K, M)|) (its cost
+    grows with them), or STEPS samples fewer than SAMPLES_PER_PERIOD per period."""
+    from scipy.linalg import eigvals
+    t = parse_sweep(span, key="--free")
+    if t[0] != 0 or t[-1] <= 0:
+        raise InputError(f"times '{span}' must run from 0 to a positive end", key="--free",
+                         hint="e.g. --free 0:5:2000 (seconds)")
+    highest = float(np.sqrt(np.max(np.abs(eigvals(lin.K, lin.M)))))
+    if not highest > 0:
+        return t
+    period = 2 * np.pi / highest
+    periods = t[-1] / period
+    where = (f"the highest natural frequency, omega = {highest:.4g} rad/s, has the period "
+             f"{period:.4g} s")
+    if periods > MAX_PERIODS:
+        raise InputError(f"free '{span}': {periods:.4g} periods is more than the limit of "
+                         f"{MAX_PERIODS} ({where})", key="--free",
+                         hint=f"end the time at {MAX_PERIODS * period:.4g} s or before")
+    steps = t.size - 1
+    if steps < SAMPLES_PER_PERIOD * periods:
+        need = int(np.ceil(SAMPLES_PER_PERIOD * periods))
+        raise InputError(f"free '{span}': {steps / periods:.4g} samples per period would draw "
+                         f"an aliased curve ({where})", key="--free",
+                         hint=f"use at least {need} STEPS, {SAMPLES_PER_PERIOD} a period: "
+                         f"--free 0:{span.split(':')[1]}:{need}")
+    return t

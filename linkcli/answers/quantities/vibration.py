@@ -164,7 +164,7 @@ def evaluate(mech, names, result):
                                  "and the excitation")
             result.values[name], result.units[name] = shown(mech.units, answer, quantity.unit)
     result.analysis = analysis
-    result.cautions = road_lift_off(analysis)
+    result.cautions = list(analysis.lin.eq.cautions) + road_lift_off(analysis)
     return result
 
 

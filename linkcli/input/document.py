@@ -175,6 +175,8 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                 self.names[key] = self.number(value, ("params", key))
             except _Skip:
                 continue
+            if self.symbolic is not None:
+                self.names[key] = self.symbolic.param(key, self.names[key])
 
     def frame(self, data, units) -> dict:
         frame = self.mapping(self.get(data, (), "frame"), ("frame",))
@@ -214,6 +216,8 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                        "actuator", hint="add it to a link or remove it")
 
 
-def build(doc: Document, k: int | None = None) -> Mechanism:
-    """The validated mechanism of ``doc`` for matricola digit ``k`` (None: the file's)."""
-    return Parser(doc, k).parse()
+def build(doc: Document, k: int | None = None, symbolic=None) -> Mechanism:
+    """The validated mechanism of ``doc`` for matricola digit ``k`` (None: the file's);
+    with ``symbolic`` (an ``input.symbols.Symbolic``) its numbers carry their formulas
+    in the parameters (``model.exact``)."""
+    return Parser(doc, k, symbolic).parse()

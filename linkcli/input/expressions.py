@@ -18,6 +18,7 @@ import math
 import re
 
 from linkcli.errors import ExpressionError
+from linkcli.model import exact as _exact
 
 MAX_LENGTH = 400
 MAX_DEPTH = 40
@@ -47,8 +48,11 @@ _BINARY = {
 }
 
 
-def evaluate(text, names: dict[str, float] | None = None) -> float:
-    """Value of ``text`` (a number or an expression string) with ``names`` bound."""
+def evaluate(text, names: dict[str, float] | None = None, exact: bool = False) -> float:
+    """Value of ``text`` (a number or an expression string) with ``names`` bound.
+
+    ``exact``: the names may be ``model.exact`` numbers and the result is one where an
+    operand is (pi and deg are exact too)."""
     if isinstance(text, bool):
         raise ExpressionError(f"expected a number, got {text!r}")
     if isinstance(text, (int, float)):
@@ -65,9 +69,9 @@ def evaluate(text, names: dict[str, float] | None = None) -> float:
     except (SyntaxError, ValueError, RecursionError, MemoryError):
         raise ExpressionError(f"cannot parse expression '{_short(source)}'",
                               hint="use numbers, names, + - * / ** and parentheses") from None
-    scope = dict(CONSTANTS)
+    scope = _exact.constants() if exact else dict(CONSTANTS)
     scope.update(names or {})
-    value = _Walker(scope, source).value(tree.body, 0)
+    value = _Walker(scope, source, exact).value(tree.body, 0)
     if not ALLOWED.fullmatch(text):   # e.g. a '# comment', or letters Python would normalise
         bad = next(c for c in text if not ALLOWED.fullmatch(c))
         raise ExpressionError(f"character {bad!r} is not allowed in expression "
@@ -98,10 +102,16 @@ def _in_range(value: float, what: str) -> float:
     return value
 
 
+def _float(value) -> float:
+    """``value`` as a float, keeping an exact number's formula."""
+    return value if isinstance(value, _exact.Exact) else float(value)
+
+
 class _Walker:
-    def __init__(self, scope: dict[str, float], source: str):
+    def __init__(self, scope: dict[str, float], source: str, exact: bool = False):
         self.scope = scope
         self.source = source
+        self.exact = exact          # literals as exact numbers (0.5 is 1/2)
 
     def fail(self, what: str) -> ExpressionError:
         return ExpressionError(f"{what} in expression '{_short(self.source)}'")
@@ -119,14 +129,16 @@ class _Walker:
         if isinstance(node, ast.Constant):
             if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
                 raise self.fail(f"constant {node.value!r} is not a number")
-            return _finite(node.value, f"a number in expression '{_short(self.source)}'")
+            value = _finite(node.value, f"a number in expression '{_short(self.source)}'")
+            return _exact.Exact(value, _exact.constant(node.value)) if self.exact else value
         if isinstance(node, ast.Name):
             if node.id not in self.scope:
                 names = sorted(self.scope)      # at most 10: the text stays linear in the file
                 known = (", ".join(names[:10]) + (f" ... and {len(names) - 10} more"
                                                   if len(names) > 10 else "")) or "none"
                 raise self.fail(f"unknown name '{node.id}' (known: {known})")
-            return float(self.scope[node.id])
+            value = self.scope[node.id]
+            return value if isinstance(value, _exact.Exact) else float(value)
         if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
             operand = self.value(node.operand, depth)
             return -operand if isinstance(node.op, ast.USub) else operand
@@ -152,14 +164,14 @@ class _Walker:
                 raise self.fail("zero to a negative power") from None
             if isinstance(result, complex):
                 raise self.fail("power of a negative number to a fractional exponent")
-            return float(result)
+            return _float(result)
         op = _BINARY.get(type(node.op))
         if op is None:
             word = {"FloorDiv": "//", "Mod": "%"}.get(type(node.op).__name__,
                                                       type(node.op).__name__)
             raise self.fail(f"operator '{word}' is not allowed")
         try:
-            return float(op(left, right))
+            return _float(op(left, right))
         except ZeroDivisionError:
             raise self.fail("division by zero") from None
         except OverflowError:
@@ -176,7 +188,7 @@ class _Walker:
             raise self.fail(f"{node.func.id}() takes {arity} argument(s)")
         args = [self.value(arg, depth) for arg in node.args]
         try:
-            return float(func(*args))
+            return _exact.call(node.func.id, func, args)
         except (ValueError, OverflowError):
             shown = ", ".join(f"{a:g}" for a in args)
             raise self.fail(f"{node.func.id}({shown}) is out of its domain") from None

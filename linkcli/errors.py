@@ -143,6 +143,22 @@ class NoWorkError(SingularError):
         self.rows = rows
 
 
+class ModeError(SolveError):
+    """A quantity of one mode that the mode has not: a damped frequency of a mode that does
+    not oscillate, a damping ratio of a mode that nothing holds, a shape ratio to a
+    coordinate that does not move in the mode, a component of a repeated frequency's shape.
+
+    ``mode`` is the mode (from 1), ``reason`` one of 'overdamped', 'critically damped',
+    'no stiffness', 'does not move', 'repeated'; ``values`` the numbers the message names
+    (the decay rates -s in 1/s, the still coordinate's size against the largest)."""
+
+    def __init__(self, detail: str, *, mode: int, reason: str, values=(), **kw):
+        super().__init__(detail, **kw)
+        self.mode = mode
+        self.reason = reason
+        self.values = tuple(values)
+
+
 @dataclass
 class Caution:
     """A result that is given, but that the reader must look at: a figure far from the

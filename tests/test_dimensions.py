@@ -73,3 +73,12 @@ def test_every_unit_in_the_tables_has_its_kinds_dimension():
             units = Units({kind: name})
             shown, factor = units.show(DIMENSIONS[kind], kind)
             assert (shown, factor) == (name, table[name])
+
+
+def test_a_quantitys_own_unit_is_used_when_it_is_of_the_dimension():
+    """`unit: Hz` on a frequency: that unit; a unit of another dimension is refused."""
+    units = Units({"frequency": "rpm"})
+    assert units.show(DIMENSIONS["frequency"], "frequency", "Hz") == ("Hz", 2 * math.pi)
+    assert units.show(DIMENSIONS["frequency"], "frequency") == ("rpm", 2 * math.pi / 60)
+    with pytest.raises(InputError):
+        units.show(DIMENSIONS["frequency"], "frequency", "mm")

@@ -8,8 +8,10 @@ seed's uncorrected formula is shown to DISAGREE with linkcli, to document the er
 The numbers are the ones chosen in each file (the seed gives symbols only); they are
 repeated here on purpose, so that a change of the file shows up as a failure.
 
-Units: the files print angles in degrees and lengths in mm (m where the file says so);
-matrix entries, frequencies and forces are SI.
+Units: the files print angles in degrees and lengths in mm (m where the file says so),
+frequencies in rad/s, masses, stiffnesses and damping in the default kg, kg m^2, N/m,
+N m/rad; an entry between a length and an angle, and a mode shape's ratio, in products of
+the file's units (kg mm, N/deg, mm/deg), converted here by hand (:func:`in_file_units`).
 """
 from __future__ import annotations
 
@@ -63,8 +65,36 @@ def modes(M, K):
     return np.sqrt(lam), vec / vec[0]
 
 
-def assert_matrix(v, names, matrix, what, atol=0.0):
-    """The file's entries named m11, m12, m22 (or k.., r..) against ``matrix``."""
+DEG = math.pi / 180
+#: the SI value of one display unit of each coordinate's kind
+ANGLE, MM = DEG, 1e-3
+
+
+def in_file_units(matrix, bases, what, length=MM):
+    """SI entries shown in a file of lengths in ``length`` (m per unit) and angles in deg
+    with the default kinds: an entry between a length and an angle is in kg mm (mass: SI
+    over the length unit) or N/deg, Ns/deg (stiffness, damping: SI times the radians of a
+    degree); entries between like coordinates are in the default kinds, unchanged."""
+    out = np.array(matrix, dtype=float)
+    for i in range(len(bases)):
+        for j in range(len(bases)):
+            if bases[i] != bases[j]:
+                out[i, j] = out[i, j] / length if what == "M" else out[i, j] * DEG
+    return out
+
+
+def shape_in_file_units(ratio, top, bottom, length=MM):
+    """A mode shape's ratio (SI: m/rad, rad/m or 1) of a ``top`` coordinate over a ``bottom``
+    one ('length' or 'angle') in the file's units (mm/deg, deg/mm ...)."""
+    unit = {"length": length, "angle": ANGLE}
+    return ratio * unit[bottom] / unit[top]
+
+
+def assert_matrix(v, names, matrix, what, atol=0.0, bases=None, length=MM):
+    """The file's entries named m11, m12, m22 (or k.., r..) against ``matrix`` (SI), with
+    the coordinates' ``bases`` where they mix lengths and angles."""
+    if bases is not None:
+        matrix = in_file_units(matrix, bases, what, length)
     for (i, j), name in names.items():
         scale = np.max(np.abs(matrix))
         assert_close(v[name], matrix[i][j], atol=max(atol, 1e-12 * scale), what=f"{what} {name}")
@@ -94,22 +124,23 @@ def feb07_matrices(M, m, j, l, K, **_):
             np.array([[2 * K * l ** 2 + m * G * l, -2 * K * l], [-2 * K * l, 2 * K]]))
 
 
-def assert_two_modes(v, Mm, Kk):
+def assert_two_modes(v, Mm, Kk, bases=("angle", "angle")):
     """M and K entries, both frequencies (rad/s and Hz) and mode components u_n."""
-    assert_matrix(v, named("m"), Mm, "M")
-    assert_matrix(v, named("k"), Kk, "K")
+    assert_matrix(v, named("m"), Mm, "M", bases=bases)
+    assert_matrix(v, named("k"), Kk, "K", bases=bases)
     w, u = modes(Mm, Kk)
     for n in (1, 2):
         assert_close(v[f"w{n}"], w[n - 1], what=f"w{n}")
         assert_close(v[f"f{n}"], w[n - 1] / (2 * math.pi), what=f"f{n}")
-        assert_close(v[f"u{n}"], u[1, n - 1], what=f"u{n} (second coordinate per unit first)")
+        assert_close(v[f"u{n}"], shape_in_file_units(u[1, n - 1], bases[1], bases[0]),
+                     what=f"u{n} (second coordinate per unit first)")
     return w, u
 
 
 def test_feb07_matrices_frequencies_and_modes():
     v = values("02-07")
     Mm, Kk = feb07_matrices(**FEB07)
-    w, u = assert_two_modes(v, Mm, Kk)
+    w, u = assert_two_modes(v, Mm, Kk, bases=("angle", "length"))
     assert_close(v["theta_e"], 270.0)
     assert_close(v["x_e"], 400.0)                 # the seed's x = 0: the figure
 
@@ -119,7 +150,7 @@ def test_feb07_stability_determinant_is_2Kmgl_not_the_seeds():
     det K = 2K(2Kl^2 + mgl) - 4K^2 l^2 = 2K m g l."""
     v = values("02-07")
     p = FEB07
-    det = v["k11"] * v["k22"] - v["k12"] ** 2
+    det = v["k11"] * v["k22"] - (v["k12"] / DEG) ** 2       # k12 in N/deg
     assert_close(det, 2 * p["K"] * p["m"] * G * p["l"])
     seed = 2 * p["K"] * (2 * p["K"] * p["l"] ** 2 + p["m"] * G * p["l"]) \
         + 4 * p["K"] ** 2 * p["l"] ** 2
@@ -348,14 +379,16 @@ def test_jul17_matrices_frequencies_and_modes():
     v = values("07-17")
     p = JUL17
     Ms, Ks = jul17_seed(**p)
-    assert_matrix(v, named("m"), to_file_coordinates(Ms, p["R"]), "M")
-    assert_matrix(v, named("k"), to_file_coordinates(Ks, p["R"]), "K")
+    bases = ("length", "angle")
+    assert_matrix(v, named("m"), to_file_coordinates(Ms, p["R"]), "M", bases=bases)
+    assert_matrix(v, named("k"), to_file_coordinates(Ks, p["R"]), "K", bases=bases)
     w, u = modes(Ms, Ks)
     for n in (1, 2):
         assert_close(v[f"w{n}"], w[n - 1], what=f"w{n}")
         assert_close(v[f"f{n}"], w[n - 1] / (2 * math.pi), what=f"f{n}")
-        # phi / xc (rad/m) = -(phi_seed / theta) / R
-        assert_close(v[f"u{n}"], -u[1, n - 1] / p["R"], what=f"u{n}")
+        # phi / xc (rad/m) = -(phi_seed / theta) / R, shown in deg/mm
+        assert_close(v[f"u{n}"], shape_in_file_units(-u[1, n - 1] / p["R"], "angle", "length"),
+                     what=f"u{n}")
     assert abs(v["xc_e"]) < 1e-9
     assert_close(v["phi_e"], 270.0)
 
@@ -367,9 +400,11 @@ def test_jul17_seeds_mass_matrix_flips_the_pendulum_in_the_modes():
     w, u = modes(*jul17_seed(**p, sign=+1.0))
     for n in (1, 2):
         assert_close(v[f"w{n}"], w[n - 1])
-        assert not close(v[f"u{n}"], -u[1, n - 1] / p["R"], rtol=1e-3)
-    assert not close(v["m12"], to_file_coordinates(jul17_seed(**p, sign=+1.0)[0], p["R"])[0, 1],
-                     rtol=1e-3)
+        assert not close(v[f"u{n}"], shape_in_file_units(-u[1, n - 1] / p["R"], "angle",
+                                                         "length"), rtol=1e-3)
+    seeds = in_file_units(to_file_coordinates(jul17_seed(**p, sign=+1.0)[0], p["R"]),
+                          ("length", "angle"), "M")
+    assert not close(v["m12"], seeds[0, 1], rtol=1e-3)
 
 
 def test_jul17_response_to_the_moving_support():

@@ -161,6 +161,57 @@ report: {{vibration: [w1, X, T]}}
 """
 
 
+def chain(n, k=1000.0, m=1.0) -> str:
+    """n masses m on a line, n + 1 springs k between two walls (mm): omega_j =
+    2 sqrt(k / m) sin(j pi / (2 (n + 1))).  Each point depends on one coordinate."""
+    points = ["W0"] + [f"P{i}" for i in range(1, n + 1)] + ["W1"]
+    lines = [f"title: a chain of {n} masses on springs between two walls",
+             "units: {length: mm, angle: deg}",
+             f"frame: {{W0: [0, 0], W1: [{100 * (n + 1)}, 0]}}", "points:"]
+    lines += [f"  P{i}: [{100 * i}, 0]" for i in range(1, n + 1)]
+    lines += ["sliders:"] + [f"  b{i}: {{point: P{i}, guide: {{y: 0}}}}" for i in range(1, n + 1)]
+    lines += ["coordinates:"] + [f"  x{i}: {{x: P{i}}}" for i in range(1, n + 1)]
+    lines += ["springs:"] + [f"  s{i}: {{between: [{points[i]}, {points[i + 1]}], k: {k}}}"
+                             for i in range(n + 1)]
+    lines += ["dynamics:", "  masses: {" + ", ".join(f"P{i}: {m}" for i in range(1, n + 1)) + "}",
+              "quantities:", "  w1: {natural_frequency: 1}", f"  wn: {{natural_frequency: {n}}}",
+              "report: {vibration: [w1, wn], decimals: 6}"]
+    return "\n".join(lines) + "\n"
+
+
+def chain_omega(n, k=1000.0, m=1.0):
+    return [2 * math.sqrt(k / m) * math.sin(j * math.pi / (2 * (n + 1))) for j in (1, n)]
+
+
+def pendulums(n, L=1.0, m=1.0) -> str:
+    """n rods of length L hanging end to end, a mass m at each joint (m): the last point
+    depends on every coordinate.  Linearised: M_ij = m L^2 (n + 1 - max(i, j)),
+    K = diag(m g L (n + 1 - i)) (i, j from 1)."""
+    names = ["O"] + [f"A{i}" for i in range(1, n + 1)]
+    lines = [f"title: {n} pendulums hanging end to end", "units: {length: m, angle: deg}",
+             "frame: {O: [0, 0]}", "points:"]
+    lines += [f"  A{i}: [0.01, {-i * L}]" for i in range(1, n + 1)]
+    lines += ["links:"] + [f"  l{i}: {{points: [{names[i - 1]}, {names[i]}], length: {L}}}"
+                           for i in range(1, n + 1)]
+    lines += ["coordinates:"] + [f"  t{i}: {{angle: [{names[i - 1]}, {names[i]}]}}"
+                                 for i in range(1, n + 1)]
+    lines += ["dynamics:", f"  gravity: {G}",
+              "  masses: {" + ", ".join(f"A{i}: {m}" for i in range(1, n + 1)) + "}",
+              "quantities:", "  w1: {natural_frequency: 1}", f"  wn: {{natural_frequency: {n}}}",
+              "report: {vibration: [w1, wn], decimals: 6}"]
+    return "\n".join(lines) + "\n"
+
+
+def pendulums_omega(n, L=1.0, m=1.0):
+    import numpy as np
+    from scipy.linalg import eigh
+    i = np.arange(1, n + 1)
+    M = m * L ** 2 * (n + 1 - np.maximum.outer(i, i))
+    K = np.diag(m * G * L * (n + 1 - i))
+    values = np.sqrt(eigh(K, M, eigvals_only=True))
+    return [float(values[0]), float(values[-1])]
+
+
 def solve_file(path, extra=None, params=None, report=None, **sections):
     """Values of the mechanism file ``path`` (keys left out); ``extra`` quantities are
     added to its vibration report, ``params`` override its parameters, ``report``

@@ -162,7 +162,7 @@ class Lagrangian:
         roll = self._roll(jt, disc)
         k = -disc.side / disc.radius
         return jac.Scalar(k * (roll.value - self._rolled.get(disc.name, 0.0)),
-                          [k * g for g in roll.grad], [[k * h for h in row] for row in roll.hess])
+                          k * roll.grad, k * roll.hess)
 
     def rotations(self, q, jt) -> dict:
         """The rotation of every body an element or load acts through, at coordinates ``q``
@@ -223,19 +223,16 @@ class Lagrangian:
         if m.kind == "along":
             return jac.along(jt, m.a, m.b, m.direction)
         a, b = rotations[m.a], rotations[m.b]
-        n = self.n
-        return jac.Scalar(b.value - a.value, [b.grad[i] - a.grad[i] for i in range(n)],
-                          [[b.hess[i][j] - a.hess[i][j] for j in range(n)] for i in range(n)])
+        return jac.Scalar(b.value - a.value, b.grad - a.grad, b.hess - a.hess)
 
     def lever(self, jt, m: el.Measure, rotations) -> np.ndarray:
         """Per coordinate, how fast the element's ends move per unit rate: |P_a,i| + |P_b,i|
         (|theta_a,i| + |theta_b,i| for a torsional element), the most its measure's rate
         s_i can be.  An element whose s_i is a small fraction of this is carried rigidly."""
-        n = self.n
         if m.kind == "angle":
             a, b = rotations[m.a], rotations[m.b]
-            return np.array([abs(float(a.grad[i])) + abs(float(b.grad[i])) for i in range(n)])
-        return np.array([abs(jt.d1(m.a, i)) + abs(jt.d1(m.b, i)) for i in range(n)], float)
+            return np.abs(a.grad) + np.abs(b.grad)
+        return np.abs(jt.gradient(m.a)) + np.abs(jt.gradient(m.b))
 
     def masses(self, jt) -> list:
         out = []
@@ -264,15 +261,13 @@ class Lagrangian:
         V = 0.0
         masses = self.masses(jt)
         g = self.dyn.gravity if self.dyn is not None else 0j
-        for m in masses:
+        for m in masses:            # arrays over the coordinates: one NumPy step per body
             G, Gi, Gij = m.g
-            for i in range(n):
-                Q[i] += m.mass * np.real(np.conj(g) * Gi[i])
-                for j in range(n):
-                    M[i, j] += m.mass * np.real(np.conj(Gi[i]) * Gi[j])
-                    K[i, j] -= m.mass * np.real(np.conj(g) * Gij[(i, j)])
-                    if m.theta is not None:
-                        M[i, j] += m.inertia * m.theta.grad[i] * m.theta.grad[j]
+            Q += m.mass * np.real(np.conj(g) * Gi)
+            M += m.mass * np.real(np.outer(np.conj(Gi), Gi))
+            K -= m.mass * np.real(np.conj(g) * Gij)
+            if m.theta is not None:
+                M += m.inertia * np.outer(m.theta.grad, m.theta.grad)
             V -= m.mass * float(np.real(np.conj(g) * G))
         measures, forces = {}, {}
         for spring in self.elements.springs.values():
@@ -281,10 +276,8 @@ class Lagrangian:
             force = spring.stiffness * stretch
             forces[spring.name] = float(force)
             V += 0.5 * force * stretch
-            for i in range(n):
-                Q[i] -= force * s.grad[i]
-                for j in range(n):
-                    K[i, j] += spring.stiffness * s.grad[i] * s.grad[j] + force * s.hess[i][j]
+            Q -= force * s.grad
+            K += spring.stiffness * np.outer(s.grad, s.grad) + force * s.hess
         for damper in self.elements.dampers.values():
             s = measures[damper.name] = self.measure(jt, damper.measure, rotations)
             R += damper.coefficient * np.outer(s.grad, s.grad)
@@ -321,9 +314,8 @@ class Lagrangian:
 
     def load_lever(self, jt, load, rotations) -> np.ndarray:
         """|P_i| of a force's point, |theta_i| of a torque's body, the actuator's ends' speeds."""
-        n = self.n
         if load.kind == "force":
-            return np.array([abs(jt.d1(load.target, i)) for i in range(n)], float)
+            return np.abs(jt.gradient(load.target))
         if load.kind == "torque":
             return np.abs(np.asarray(rotations[self.torqued(load.target)].grad, dtype=float))
         act = self.mech.actuators[load.target]
@@ -345,17 +337,14 @@ class Lagrangian:
 
     def convective(self, terms: Terms, qd) -> np.ndarray:
         """c_i = sum m Re(conj(G_i) a0_G) + J theta_i alpha0, with a0 = sum_jk G_jk q'_j q'_k."""
-        n = self.n
-        c = np.zeros(n)
+        qd = np.asarray(qd, dtype=float)
+        c = np.zeros(self.n)
         for m in terms.masses:
             _, Gi, Gij = m.g
-            a0 = sum(Gij[(j, k)] * qd[j] * qd[k] for j in range(n) for k in range(n))
-            alpha0 = 0.0 if m.theta is None else \
-                sum(m.theta.hess[j][k] * qd[j] * qd[k] for j in range(n) for k in range(n))
-            for i in range(n):
-                c[i] += m.mass * np.real(np.conj(Gi[i]) * a0)
-                if m.theta is not None:
-                    c[i] += m.inertia * m.theta.grad[i] * alpha0
+            a0 = qd @ Gij @ qd
+            c += m.mass * np.real(np.conj(Gi) * a0)
+            if m.theta is not None:
+                c += m.inertia * m.theta.grad * (qd @ m.theta.hess @ qd)
         return c
 
     def potential(self, q) -> float:
@@ -363,8 +352,7 @@ class Lagrangian:
         q = np.asarray(q, dtype=float)
         kin = self.solver.positions(self._solver_q(q))
         self.solver.check(kin, velocities=False)
-        jt = jac.Jet(kin.pos, [{} for _ in range(self.n)], n=self.n)
-        jt.second = {(i, j): {} for i in range(self.n) for j in range(i, self.n)}
+        jt = jac.Jet(kin.pos, n=self.n)         # positions only: zero derivatives
         rotations = self.rotations(q, jt)
         V = 0.0
         g = self.dyn.gravity if self.dyn is not None else 0j

@@ -12,8 +12,10 @@ _fs blocks coupling the two.
 
 - Natural frequencies and modes: K u = omega^2 M u (scipy.linalg.eigh); a
   negative eigenvalue means the equilibrium is unstable and is reported so.
-- Damped: the eigenvalues s of [[0, I], [-M^-1 K, -M^-1 R]]; for each
-  conjugate pair zeta = -Re(s)/|s| and omega_d = |Im(s)|.
+- Damped: the eigenvalues s of [[0, I], [-M^-1 K, -M^-1 R]], two per undamped mode,
+  paired with the modes through their eigenvectors (``damped``); a mode's roots give
+  omega_n = sqrt(s1 s2), zeta = -(s1 + s2) / (2 omega_n) and, for a conjugate pair,
+  omega_d = |Im s|; two real roots are an overdamped mode (two decay rates).
 - Steady state: X = (K - Omega^2 M + i Omega R)^-1 F, vectorised over Omega.
 - Free response: z(t) = expm(A t) z0 for the state z = (x, x').
 - Nonlinear: M(q) q'' = Q(q) - R(q) q' - c(q, q') + forcing(t), integrated by
@@ -28,6 +30,7 @@ import numpy as np
 from linkcli.errors import SolveError
 from linkcli.forces.equilibrium import Equilibrium, equilibrium
 from linkcli.forces.lagrange import Lagrangian, require_mass
+from linkcli.model.units import DIMENSIONS
 
 #: an eigenvalue of K below -UNSTABLE times the largest is a loss of stability
 UNSTABLE = 1e-9
@@ -92,13 +95,41 @@ def linearise(lag: Lagrangian) -> Linear:
 
 @dataclass
 class Modes:
+    """The undamped modes, ascending in frequency.
+
+    ``vectors`` are mass-normalised (u^T M u = 1); ``shapes`` the same columns scaled so
+    that the reference coordinate (the first free one, index ``REFERENCE``) is 1, or, in a
+    mode where it does not move, so that the largest component is.  ``size[i, k]`` is how
+    much coordinate i moves in mode k against the mode's largest component, in energy:
+    |u_ik| sqrt(M_ii) over the largest such term (1 for the largest, 0 for a coordinate that
+    does not move); components below ``still[k]`` (the accuracy of the computed
+    eigenvector, from its frequency's gap to the others) are zero.  ``repeated[k]`` names the
+    other modes sharing mode k's frequency (their shapes are any combination)."""
+
     omega: np.ndarray        # natural frequencies (rad/s), ascending
-    shapes: np.ndarray       # columns: mode shapes, normalised (see ``normalise``)
+    shapes: np.ndarray       # columns: mode shapes, the reference coordinate 1
     eigenvalues: np.ndarray  # omega^2
+    vectors: np.ndarray      # columns: mass-normalised mode shapes
+    size: np.ndarray         # |u_ik| sqrt(M_ii) against the mode's largest
+    still: np.ndarray        # per mode: the size below which a component is zero
+    repeated: list           # per mode: the other modes of the same frequency
+
+    def moves(self, i, k) -> bool:
+        """Whether coordinate i moves in mode k (above the eigenvector's accuracy)."""
+        return bool(self.size[i, k] > self.still[k])
+
+
+#: the reference coordinate of the mode shapes: the first free coordinate
+REFERENCE = 0
+#: omega^2 below ZERO times the largest is a mode without stiffness (omega = 0): a free body
+ZERO = 1e-12
+#: eigenvalues closer than REPEATED times the largest are one repeated frequency
+REPEATED = 1e-8
 
 
 def modes(lin: Linear) -> Modes:
-    """Undamped natural frequencies and modes; refuses an unstable equilibrium."""
+    """Undamped natural frequencies and modes (K u = omega^2 M u); refuses an unstable
+    equilibrium."""
     from scipy.linalg import eigh
     values, vectors = eigh(lin.K, lin.M)
     top = max(float(np.max(np.abs(values))), 1e-300)
@@ -111,58 +142,121 @@ def modes(lin: Linear) -> Modes:
                          file=lin.lag.mech.file,
                          hint="stiffen the springs or check gravity's direction and the "
                          "equilibrium position")
-    values = np.where(values < 0, 0.0, values)
-    return Modes(np.sqrt(values), normalise(vectors), values)
+    values = np.where(values <= ZERO * top, 0.0, values)
+    n = len(values)
+    gaps = np.abs(values[:, None] - values[None, :]) + np.diag(np.full(n, np.inf))
+    repeated = [[j for j in range(n) if gaps[k, j] <= REPEATED * top] for k in range(n)]
+    # an eigenvector's error is about eps ||M^-1 K|| / gap (Davis-Kahan), relative to its size
+    gap = np.min(gaps, axis=1) if n > 1 else np.full(1, np.inf)
+    # (at most a half: a repeated frequency's shapes, refused as answers, are still drawn)
+    still = np.minimum(64 * np.finfo(float).eps * top / np.maximum(gap, 1e-300), 0.5)
+    still = np.maximum(still, 64 * np.finfo(float).eps)
+    weighted = np.abs(vectors) * np.sqrt(np.diag(lin.M))[:, None]
+    size = weighted / np.max(weighted, axis=0)
+    vectors = np.where(size > still, vectors, 0.0)
+    return Modes(np.sqrt(values), _normalise(vectors, size, still), values, vectors, size,
+                 still, repeated)
 
 
-def normalise(vectors):
-    """Each column scaled so its first component is 1 (or, when that is ~0, its largest)."""
-    out = np.array(vectors, dtype=complex if np.iscomplexobj(vectors) else float)
+def _normalise(vectors, size, still):
+    """Each column scaled so its reference component is 1, or, in a mode where the
+    reference does not move, its largest component (in energy)."""
+    out = np.array(vectors, dtype=float)
     for k in range(out.shape[1]):
-        col = out[:, k]
-        ref = col[0] if abs(col[0]) > 1e-9 * np.max(np.abs(col)) else col[np.argmax(np.abs(col))]
-        out[:, k] = col / ref
-    return out
+        ref = REFERENCE if size[REFERENCE, k] > still[k] else int(np.argmax(size[:, k]))
+        out[:, k] = out[:, k] / out[ref, k]
+    return out + 0.0               # no -0: a coordinate that does not move is 0
+
+
+#: a conjugate pair of roots whose imaginary part is below CRITICAL times its magnitude is a
+#: critically damped mode split by rounding (a double root is known to about sqrt(eps))
+CRITICAL = 1e-7
 
 
 @dataclass
 class Damped:
-    omega_n: np.ndarray      # |s| per mode
-    zeta: np.ndarray         # damping ratios
-    omega_d: np.ndarray      # damped frequencies (0 when overdamped)
+    """The roots s of det(M s^2 + R s + K) = 0, two per undamped mode (see ``damped``).
+
+    ``roots[k]``: mode k's two roots, a conjugate pair (Im > 0 first) or two real ones (the
+    slower decay first).  From them: omega_n = sqrt(s1 s2) (|s| for a pair), zeta =
+    -(s1 + s2) / (2 omega_n), and, where the mode oscillates, omega_d = |Im s|."""
+
+    roots: np.ndarray        # (n, 2) complex
+    oscillates: np.ndarray   # per mode: a conjugate pair of roots (not critically damped)
+    share: np.ndarray        # per mode: its roots' share of that undamped mode (1: proportional)
+
+    @property
+    def omega_n(self):
+        return np.sqrt(np.abs(self.roots[:, 0] * self.roots[:, 1]))
+
+    @property
+    def zeta(self):
+        """-(s1 + s2) / (2 omega_n); 0/0 is left to the caller (a mode without stiffness)."""
+        wn = self.omega_n
+        return 0.0 - np.real(self.roots.sum(axis=1)) / (2 * np.where(wn > 0, wn, np.inf))
+
+    @property
+    def omega_d(self):
+        return np.where(self.oscillates, np.abs(self.roots[:, 0].imag), 0.0)
+
+    def decay(self, k):
+        """The decay rates -s of a mode that does not oscillate, the slower first (1/s)."""
+        return -np.real(self.roots[k])
 
 
-def damped(lin: Linear) -> Damped:
-    """Damping ratios and damped frequencies from the state matrix's eigenvalues."""
+def damped(lin: Linear, found: Modes) -> Damped:
+    """Roots of det(M s^2 + R s + K) = 0, paired with the undamped modes ``found``.
+
+    The roots are the eigenvalues s of the state matrix [[0, I], [-M^-1 K, -M^-1 R]], with
+    eigenvectors (phi, s phi).  Each root's phi is expanded on the mass-normalised undamped
+    modes, c = U^T M phi, and its share of mode k is |c_k|^2 / sum |c|^2.  A conjugate
+    pair is one mode (it oscillates); the pairs are given the modes that maximise the sum
+    of their shares (Hungarian method), and then the real roots the remaining modes, two
+    each, by the same rule.  With damping proportional to the modes (R = a M + b K, or
+    uncoupled elements) each share is 1 and the pairing exact; where damping couples the
+    modes, a root goes to the undamped mode its motion is most made of.  Undamped (R = 0):
+    the roots are +-i omega exactly."""
     n = len(lin.free)
-    Minv = np.linalg.inv(lin.M)
-    A = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ lin.K, -Minv @ lin.R]])
-    s = np.linalg.eigvals(A)
-    # a conjugate pair per underdamped mode, two real roots per overdamped one
-    s = s[np.argsort(np.abs(s))]
-    wn, zeta, wd, used = [], [], [], np.zeros(len(s), bool)
-    for i, root in enumerate(s):
-        if used[i]:
-            continue
-        used[i] = True
-        if abs(root.imag) > 1e-12 * max(abs(root), 1e-300):
-            j = next(k for k in range(len(s)) if not used[k] and abs(s[k] - np.conj(root))
-                     <= 1e-8 * max(abs(root), 1e-300))
-            used[j] = True
-            wn.append(abs(root))
-            zeta.append(-root.real / abs(root))
-            wd.append(abs(root.imag))
-        else:
-            j = next((k for k in range(len(s)) if not used[k] and abs(s[k].imag) <=
-                      1e-12 * max(abs(s[k]), 1e-300)), None)
-            other = root if j is None else s[j]
-            if j is not None:
-                used[j] = True
-            w = np.sqrt(abs(root * other))
-            wn.append(w)
-            zeta.append(-(root.real + other.real) / (2 * w) if w > 0 else 1.0)
-            wd.append(0.0)
-    return Damped(np.array(wn), np.array(zeta), np.array(wd))
+    if not np.any(lin.R):
+        roots = np.stack([1j * found.omega, -1j * found.omega], axis=1)
+        return Damped(roots, found.omega > 0, np.ones(n))
+    A = np.block([[np.zeros((n, n)), np.eye(n)],
+                  [-np.linalg.solve(lin.M, lin.K), -np.linalg.solve(lin.M, lin.R)]])
+    s, vectors = np.linalg.eig(A)
+    c = found.vectors.T @ lin.M @ vectors[:n]
+    weight = np.abs(c) ** 2
+    share = (weight / np.maximum(np.sum(weight, axis=0), 1e-300)).T     # (2n roots, n modes)
+    pairs = [r for r in range(2 * n) if s[r].imag > 0]
+    reals = [r for r in range(2 * n) if s[r].imag == 0]
+    roots = np.zeros((n, 2), dtype=complex)
+    got = np.zeros(n)
+    modes_left = list(range(n))
+    if pairs:
+        rows, cols = _assign(share[pairs])
+        for r, k in zip(rows, cols):
+            root = s[pairs[r]]
+            roots[k] = (root, np.conj(root))
+            got[k] = share[pairs[r], k]
+        modes_left = [k for k in range(n) if k not in set(cols)]
+    if reals:
+        slots = np.repeat(modes_left, 2)
+        rows, cols = _assign(share[np.ix_(reals, slots)])
+        taken = {k: [] for k in modes_left}
+        for r, col in zip(rows, cols):
+            taken[int(slots[col])].append(reals[r])
+        for k, two in taken.items():
+            two.sort(key=lambda r: abs(s[r]))
+            roots[k] = s[two].real
+            got[k] = float(np.mean(share[two, k]))
+    oscillates = np.abs(roots[:, 0].imag) > CRITICAL * np.abs(roots[:, 0])
+    return Damped(roots, oscillates, got)
+
+
+def _assign(share):
+    """Rows and columns of the assignment that maximises the sum of ``share`` (each row to
+    its own column)."""
+    from scipy.optimize import linear_sum_assignment
+    return linear_sum_assignment(-share)
 
 
 def dynamic_matrix(lin: Linear, omega):
@@ -184,8 +278,10 @@ def response(lin: Linear, omega):
     D, singular = dynamic_matrix(lin, omega)
     if np.any(singular):
         bad = float(np.atleast_1d(omega)[np.argmax(np.atleast_1d(singular))])
-        raise SolveError(f"the undamped system is at resonance at Omega = {bad:.6g} rad/s: the "
-                         "steady-state amplitude is unbounded", file=lin.lag.mech.file,
+        units = lin.lag.mech.units
+        unit, factor = units.show(DIMENSIONS["frequency"], "frequency")
+        raise SolveError(f"the undamped system is at resonance at Omega = {bad / factor:.6g} "
+                         f"{unit}: the steady-state amplitude is unbounded", file=lin.lag.mech.file,
                          hint="add damping, or move the forcing frequency away from the natural "
                          "frequencies")
     F = np.broadcast_to(lin.load(omega), D.shape[:-1])

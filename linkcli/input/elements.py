@@ -90,7 +90,10 @@ class ElementsReader:
     def positive(self, value, path, kind, what):
         number = self.p.number(value, path, kind, self.units)
         if not math.isfinite(number) or number <= 0:
-            raise self.p.error(path, f"{what} must be positive, got {value!r}",
+            shown = f"{number / self.units.factor(kind):.6g} {self.units.names[kind]}"
+            if isinstance(value, str):          # an expression: its value, then as written
+                shown += f" (= {value})"
+            raise self.p.error(path, f"{what} must be positive, got {shown}",
                                hint=f"a {what} is a number > 0")
         return number
 

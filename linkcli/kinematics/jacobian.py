@@ -7,7 +7,10 @@ accelerations for the rates v with no coordinate acceleration are
 
     P'' = sum_ij P_ij v_i v_j,
 
-so v = e_i gives P_ii and v = e_i + e_j gives P_ii + 2 P_ij + P_jj.
+so v = e_i gives P_ii and v = e_i + e_j gives P_ii + 2 P_ij + P_jj.  Every unit rate
+is one entry of an array of rates, and every pair (i, j) one entry of another, so the
+solver runs once for all the columns and once (per block of BLOCK pairs) for all the
+Hessians, whatever n: the work is in NumPy's loops, not in a Python loop per pair.
 
 The *measures* that forces act through follow by the chain rule, with
 z = P_b - P_a and u = z / |z|:
@@ -21,7 +24,8 @@ z = P_b - P_a and u = z / |z|:
 A point of a body at the constant offset c from the body's origin point K is
 G = K + c e^{i theta}, so G_i = K_i + i theta_i c e^{i theta} and
 G_ij = K_ij + (i theta_ij - theta_i theta_j) c e^{i theta}.
-Every array has the shape of the coordinates' values (one configuration or many).
+Gradients are arrays with the coordinate first (shape (n,) + the coordinates' shape),
+Hessians with both coordinates first ((n, n) + that shape): one configuration or many.
 """
 from __future__ import annotations
 
@@ -32,38 +36,200 @@ import numpy as np
 
 from linkcli.model.mechanism import FRAME
 
+#: the pairs (i, j) of second derivatives solved at once (bounds the solver's arrays)
+BLOCK = 4096
+
+
+class Block:
+    """A square array over the coordinates, shape (n, n) + S, that is zero outside the rows
+    and columns ``idx`` (sorted): ``values`` holds those, shape (k, k) + S.  The Hessian of
+    a point of a chain of n bodies depends on a few coordinates, not on all n, so a
+    mechanism's Hessians take memory in proportion to their non-zero entries.
+
+    Sums, differences, products by numbers (or arrays of shape S), ``real``, ``imag``,
+    ``conj`` and ``@`` with a vector of n keep the block; NumPy sees the full array
+    (``np.asarray(block)``, ``K += block``), and ``block[i, j]``, ``block[i][j]`` read it."""
+
+    __array_priority__ = 20        # ndarray <op> Block calls Block's reflected operation
+
+    def __array_ufunc__(self, ufunc, method, *inputs, out=None, **kwargs):
+        """``K += block`` and ``K -= block`` add the block into the array K where it is not
+        zero; a number times a block is a block; anything else sees the full array."""
+        if method == "__call__" and not kwargs and len(inputs) == 2:
+            a, b = inputs
+            if out is not None and len(out) == 1 and out[0] is a and b is self \
+                    and ufunc in (np.add, np.subtract) and isinstance(a, np.ndarray):
+                where = (self.idx[:, None], self.idx[None, :])
+                a[where] = ufunc(a[where], self.values)
+                return a
+            if out is None and ufunc is np.multiply and np.ndim(a) == 0 and b is self:
+                return Block(self.idx, a * self.values, self.n)
+            if out is None and ufunc in (np.add, np.subtract) and isinstance(a, Block) \
+                    and isinstance(b, Block):
+                return a._combine(b, ufunc)
+        if method == "__call__" and ufunc is np.conjugate and len(inputs) == 1 and out is None:
+            return self.conj()
+        inputs = tuple(np.asarray(x) if isinstance(x, Block) else x for x in inputs)
+        if out is not None:
+            kwargs["out"] = tuple(np.asarray(x) if isinstance(x, Block) else x for x in out)
+        return getattr(ufunc, method)(*inputs, **kwargs)
+
+    def __init__(self, idx, values, n):
+        self.idx = np.asarray(idx, dtype=int)
+        self.values = np.asarray(values)
+        self.n = n
+
+    @classmethod
+    def zero(cls, n, shape=(), dtype=complex):
+        return cls(np.zeros(0, dtype=int), np.zeros((0, 0) + tuple(shape), dtype=dtype), n)
+
+    @property
+    def shape(self):
+        return (self.n, self.n) + self.values.shape[2:]
+
+    def __array__(self, dtype=None, copy=None):
+        full = np.zeros(self.shape, dtype=dtype or self.values.dtype)
+        if self.idx.size:
+            full[self.idx[:, None], self.idx[None, :]] = self.values
+        return full
+
+    def dense(self):
+        return np.asarray(self)
+
+    def within(self, idx):
+        """The values on the rows and columns ``idx`` (a sorted superset of self.idx)."""
+        if np.array_equal(idx, self.idx):
+            return self.values
+        out = np.zeros((len(idx), len(idx)) + self.values.shape[2:], dtype=self.values.dtype)
+        where = np.searchsorted(idx, self.idx)
+        out[where[:, None], where[None, :]] = self.values
+        return out
+
+    def _combine(self, other, op):
+        if isinstance(other, Block):
+            idx = np.union1d(self.idx, other.idx)
+            return Block(idx, op(self.within(idx), other.within(idx)), self.n)
+        if np.ndim(other) == 0 and other == 0:
+            return self
+        return op(self.dense(), other)
+
+    def __add__(self, other):
+        return self._combine(other, np.add)
+
+    def __radd__(self, other):
+        return self._combine(other, lambda a, b: np.add(b, a))
+
+    def __sub__(self, other):
+        return self._combine(other, np.subtract)
+
+    def __rsub__(self, other):
+        return self._combine(other, lambda a, b: np.subtract(b, a))
+
+    def __neg__(self):
+        return Block(self.idx, -self.values, self.n)
+
+    def __mul__(self, number):
+        """Times a number or an array of the configurations' shape S."""
+        return Block(self.idx, self.values * number, self.n)
+
+    __rmul__ = __mul__
+
+    def __truediv__(self, number):
+        return Block(self.idx, self.values / number, self.n)
+
+    @property
+    def real(self):
+        return Block(self.idx, np.real(self.values), self.n)
+
+    @property
+    def imag(self):
+        return Block(self.idx, np.imag(self.values), self.n)
+
+    def conj(self):
+        return Block(self.idx, np.conj(self.values), self.n)
+
+    def __matmul__(self, vector):
+        """B v for a vector of n (one configuration)."""
+        out = np.zeros(self.n, dtype=np.result_type(self.values, vector))
+        out[self.idx] = self.values @ np.asarray(vector)[self.idx]
+        return out
+
+    def __rmatmul__(self, vector):
+        """v^T B for a vector of n (one configuration)."""
+        out = np.zeros(self.n, dtype=np.result_type(self.values, vector))
+        out[self.idx] = np.asarray(vector)[self.idx] @ self.values
+        return out
+
+    def __getitem__(self, key):
+        if isinstance(key, tuple) and len(key) == 2 and all(np.ndim(k) == 0 for k in key):
+            i, j = key
+            a, b = np.searchsorted(self.idx, [i, j])
+            if a < self.idx.size and b < self.idx.size and self.idx[a] == i and self.idx[b] == j:
+                return self.values[a, b]
+            return np.zeros(self.values.shape[2:], dtype=self.values.dtype)[()]
+        return self.dense()[key]
+
 
 @dataclass
 class Jet:
     """Positions and their first and second derivatives at one set of coordinate values.
 
-    ``first[j][P]`` is dP/dq_j and ``second[(i, j)][P]`` (i <= j) is d2P/dq_i dq_j;
-    fixed points are absent from both (their derivatives are zero).
+    ``grad[P]`` is dP/dq (shape (n,) + the coordinates' shape) and ``hess[P]`` is
+    d2P/dq dq, a :class:`Block` ((n, n) + that shape, stored where it is not zero); fixed
+    points are absent from both (their derivatives are zero), and ``hess`` is empty for a
+    jet without second derivatives.
     """
 
     pos: dict
-    first: list
-    second: dict = field(default_factory=dict)
+    grad: dict = field(default_factory=dict)
+    hess: dict = field(default_factory=dict)
     n: int = 1
+    shape: tuple = ()
+
+    def gradient(self, point):
+        """dP/dq of ``point``: zeros for a fixed point."""
+        out = self.grad.get(point)
+        return np.zeros((self.n,) + self.shape, dtype=complex) if out is None else out
+
+    def hessian(self, point) -> Block:
+        """d2P/dq dq of ``point``: zero for a fixed point."""
+        out = self.hess.get(point)
+        return Block.zero(self.n, self.shape) if out is None else out
 
     def d1(self, point, j):
-        return self.first[j].get(point, 0.0)
+        return self.gradient(point)[j]
 
     def d2(self, point, i, j):
-        return self.second.get((min(i, j), max(i, j)), {}).get(point, 0.0)
+        return self.hessian(point)[i, j]
 
 
 @dataclass
 class Scalar:
-    """A scalar measure m(q): its value, gradient m_i and Hessian m_ij (lists of arrays)."""
+    """A scalar measure m(q): its value, gradient m_i (an array, shape (n,) + ...) and
+    Hessian m_ij (a :class:`Block` or an array, (n, n) + ...)."""
 
     value: object
-    grad: list
-    hess: list            # hess[i][j]
+    grad: np.ndarray
+    hess: object
+
+    def __post_init__(self):
+        self.grad = np.asarray(self.grad)
+        if not isinstance(self.hess, Block):
+            self.hess = np.asarray(self.hess)
 
     def rate(self, qd):
         """m' = sum_i m_i q'_i for coordinate rates ``qd``."""
-        return sum(g * v for g, v in zip(self.grad, qd))
+        return np.tensordot(np.asarray(qd, dtype=float), self.grad, axes=(0, 0))
+
+
+def _columns(n, count, shape):
+    """The rates the solver takes for ``count`` rate vectors (the columns of an n x count
+    matrix) at once: one array per coordinate, broadcast over the coordinates' ``shape``."""
+    def rates(matrix):
+        arrays = [np.broadcast_to(matrix[j].reshape((count,) + (1,) * len(shape)),
+                                  (count,) + shape) for j in range(n)]
+        return arrays[0] if n == 1 else tuple(arrays)
+    return rates
 
 
 def jet(solver, q, second: bool = True) -> Jet:
@@ -71,66 +237,96 @@ def jet(solver, q, second: bool = True) -> Jet:
     kin = solver.positions(q)
     solver.check(kin, velocities=False)
     n = solver.n
-    shape = kin.shape
-    zero = np.zeros(shape)
-
-    def unit(*indices):
-        return [np.ones(shape) if j in indices else zero for j in range(n)]
-
-    def rates(v):
-        return v[0] if n == 1 else v
-
-    first = []
-    for j in range(n):
-        solver.velocities(kin, rates(unit(j)))
-        if j == 0:
-            solver.check(kin, velocities=True)
-        first.append(dict(kin.vel))
-    out = Jet(dict(kin.pos), first, n=n)
-    if not second:
-        kin.linear.clear()
-        return out
-    diagonal = {}
-    for i in range(n):
-        for j in range(i, n):
-            solver.velocities(kin, rates(unit(i, j)))
-            solver.accelerations(kin, rates([zero] * n), keep=True)
-            diagonal[(i, j)] = dict(kin.acc)
+    shape = tuple(kin.shape)
+    solver.velocities(kin, _columns(n, n, shape)(np.eye(n)))
+    solver.check(kin, velocities=True)
+    full = (n,) + shape
+    out = Jet(dict(kin.pos), {p: np.array(np.broadcast_to(v, full), dtype=complex)
+                              for p, v in kin.vel.items()}, n=n, shape=shape)
+    if second:
+        out.hess = _hessians(solver, kin, n, shape, set(out.grad))
     kin.linear.clear()
-    for (i, j), acc in diagonal.items():
-        if i == j:
-            out.second[(i, i)] = acc
-            continue
-        aii, ajj = diagonal[(i, i)], diagonal[(j, j)]
-        out.second[(i, j)] = {p: 0.5 * (a - aii.get(p, 0.0) - ajj.get(p, 0.0))
-                              for p, a in acc.items()}
     return out
 
 
+def _hessians(solver, kin, n, shape, points) -> dict:
+    """P_ij of every point of ``points``, as blocks over the coordinates whose entries are
+    not zero: the diagonal from the rates e_i, then the pairs i < j from e_i + e_j, BLOCK
+    pairs at a time (only their entries that are not zero are kept)."""
+    diagonal = _accelerations(solver, kin, n, shape, np.arange(n), np.arange(n), points)
+    entries = {p: [_nonzero(np.arange(n), np.arange(n), diagonal[p])] for p in points}
+    rows, cols = np.triu_indices(n, 1)
+    for start in range(0, rows.size, BLOCK):
+        i, j = rows[start:start + BLOCK], cols[start:start + BLOCK]
+        acc = _accelerations(solver, kin, n, shape, i, j, points)
+        for p in points:
+            entries[p].append(_nonzero(i, j, 0.5 * (acc[p] - diagonal[p][i] - diagonal[p][j])))
+    return {p: _block(n, shape, parts) for p, parts in entries.items()}
+
+
+def _accelerations(solver, kin, n, shape, i, j, points) -> dict:
+    """{point: its accelerations for the rates e_i + e_j (e_i for i = j), no coordinate
+    acceleration}: arrays of shape (len(i),) + shape."""
+    count = len(i)
+    matrix = np.zeros((n, count))
+    matrix[i, np.arange(count)] = 1.0
+    matrix[j, np.arange(count)] = 1.0
+    rates = _columns(n, count, shape)
+    solver.velocities(kin, rates(matrix))
+    solver.accelerations(kin, rates(np.zeros((n, count))), keep=True)
+    full = (count,) + shape
+    return {p: np.broadcast_to(kin.acc.get(p, 0j), full) for p in points}
+
+
+def _nonzero(i, j, value):
+    """The entries (i, j, value) whose value is not zero (in some configuration)."""
+    keep = np.any(value != 0, axis=tuple(range(1, value.ndim)))
+    return i[keep], j[keep], np.array(value[keep])
+
+
+def _block(n, shape, parts) -> Block:
+    """The symmetric block of the entries (i, j, value) of ``parts``."""
+    idx = np.unique(np.concatenate([np.concatenate([i, j]) for i, j, _ in parts]))
+    values = np.zeros((idx.size, idx.size) + shape, dtype=complex)
+    for i, j, value in parts:
+        a, b = np.searchsorted(idx, i), np.searchsorted(idx, j)
+        values[a, b] = value
+        values[b, a] = value
+    return Block(idx, values, n)
+
+
 # --- measures ----------------------------------------------------------------------------
-def _pairs(n):
-    return [(i, j) for i in range(n) for j in range(n)]
-
-
 def _vector(jt: Jet, a, b):
     """z = P_b - P_a with its derivatives (fixed points contribute nothing to them)."""
-    z = jt.pos[b] - jt.pos[a]
-    zi = [jt.d1(b, i) - jt.d1(a, i) for i in range(jt.n)]
-    zij = {(i, j): jt.d2(b, i, j) - jt.d2(a, i, j) for i, j in _pairs(jt.n)}
-    return z, zi, zij
+    return (jt.pos[b] - jt.pos[a], jt.gradient(b) - jt.gradient(a),
+            jt.hessian(b) - jt.hessian(a))
+
+
+def _support(*grads_and_blocks):
+    """The coordinates where gradients (arrays) or blocks are not zero, sorted."""
+    out = np.zeros(0, dtype=int)
+    for x in grads_and_blocks:
+        if isinstance(x, Block):
+            out = np.union1d(out, x.idx)
+        else:
+            nonzero = np.any(x != 0, axis=tuple(range(1, np.ndim(x))))
+            out = np.union1d(out, np.flatnonzero(nonzero))
+    return out
+
+
+def _outer(x, y, n, idx) -> Block:
+    """x_i y_j on the coordinates ``idx`` (x, y zero elsewhere): a block."""
+    return Block(idx, x[idx][:, None] * y[idx][None, :], n)
 
 
 def along(jt: Jet, a, b, direction) -> Scalar:
     """m = Re(conj(e) (P_b - P_a)) (``a`` None: m = Re(conj(e) P_b))."""
     e = np.conj(direction)
     if a is None:
-        z, zi = jt.pos[b], [jt.d1(b, i) for i in range(jt.n)]
-        zij = {(i, j): jt.d2(b, i, j) for i, j in _pairs(jt.n)}
+        z, zi, zij = jt.pos[b], jt.gradient(b), jt.hessian(b)
     else:
         z, zi, zij = _vector(jt, a, b)
-    n = jt.n
-    return Scalar((e * z).real, [np.real(e * zi[i]) for i in range(n)],
-                  [[np.real(e * zij[(i, j)]) for j in range(n)] for i in range(n)])
+    return Scalar((e * z).real, np.real(e * zi), (zij * e).real)
 
 
 def distance(jt: Jet, a, b) -> Scalar:
@@ -138,25 +334,23 @@ def distance(jt: Jet, a, b) -> Scalar:
     z, zi, zij = _vector(jt, a, b)
     r = np.abs(z)
     u = np.conj(z) / r
-    n = jt.n
-    g = [np.real(u * zi[i]) for i in range(n)]
-    h = [[np.real(u * zij[(i, j)]) + (np.real(np.conj(zi[i]) * zi[j]) - g[i] * g[j]) / r
-          for j in range(n)] for i in range(n)]
+    g = np.real(u * zi)
+    idx = _support(zi, zij)
+    h = (zij * u).real + (_outer(np.conj(zi), zi, jt.n, idx).real
+                          - _outer(g, g, jt.n, idx)) / r
     return Scalar(r, g, h)
 
 
-def angle_of(z, zi, zij, n) -> Scalar:
+def angle_of(z, zi, zij, n=None) -> Scalar:
     """m = arg z (unwrapped near the value), from z and its derivatives."""
-    w = [zi[i] / z for i in range(n)]
-    return Scalar(np.angle(z), [np.imag(w[i]) for i in range(n)],
-                  [[np.imag(zij[(i, j)] / z - w[i] * w[j]) for j in range(n)]
-                   for i in range(n)])
+    w = zi / z
+    idx = _support(zi, zij)
+    return Scalar(np.angle(z), np.imag(w), (zij / z - _outer(w, w, len(w), idx)).imag)
 
 
 def constant(jt: Jet, value=0.0) -> Scalar:
-    n = jt.n
-    zero = np.zeros(np.shape(next(iter(jt.pos.values()))))
-    return Scalar(value + zero, [zero] * n, [[zero] * n for _ in range(n)])
+    zero = np.zeros(jt.shape)
+    return Scalar(value + zero, np.zeros((jt.n,) + jt.shape), Block.zero(jt.n, jt.shape, float))
 
 
 # --- bodies ------------------------------------------------------------------------------
@@ -185,16 +379,14 @@ def body_angle(mech, jt: Jet, name) -> Scalar:
     if axis is None:
         return constant(jt)
     _, (a, b), local = axis
-    z, zi, zij = _vector(jt, a, b)
-    s = angle_of(z, zi, zij, jt.n)
+    s = angle_of(*_vector(jt, a, b))
     s.value = s.value - local
     return s
 
 
 def body_point(mech, jt: Jet, name, local: complex):
     """Position G of the point at ``local`` coordinates of body ``name``, with G_i and
-    G_ij: returns (G, [G_i], {(i, j): G_ij})."""
-    n = jt.n
+    G_ij: returns (G, G_i (n,) + S, G_ij a Block (n, n) + S)."""
     origin, _, _ = body_axis(mech, name)
     body = mech.bodies.get(name)
     offset = local - (body.local[origin] if body is not None and body.kind in ("link", "block")
@@ -202,14 +394,12 @@ def body_point(mech, jt: Jet, name, local: complex):
     theta = body_angle(mech, jt, name)
     c = offset * np.exp(1j * theta.value)
     g = jt.pos[origin] + c
-    gi = [jt.d1(origin, i) + 1j * theta.grad[i] * c for i in range(n)]
-    gij = {(i, j): jt.d2(origin, i, j) + (1j * theta.hess[i][j] - theta.grad[i] * theta.grad[j]) * c
-           for i, j in _pairs(n)}
+    gi = jt.gradient(origin) + 1j * theta.grad * c
+    idx = _support(theta.grad, theta.hess)
+    gij = jt.hessian(origin) + (1j * theta.hess - _outer(theta.grad, theta.grad, jt.n, idx)) * c
     return g, gi, gij
 
 
 def point(jt: Jet, p):
     """Position of point ``p`` with its derivatives, in the form of :func:`body_point`."""
-    n = jt.n
-    return jt.pos[p], [jt.d1(p, i) for i in range(n)], \
-        {(i, j): jt.d2(p, i, j) for i, j in _pairs(n)}
+    return jt.pos[p], jt.gradient(p), jt.hessian(p)

@@ -318,14 +318,15 @@ class SubstituteSolver:
         """p' = J^-1 q'."""
         chart, _, J, _ = kin.substitute
         rates = np.stack(np.broadcast_arrays(*self._coords(qd)), axis=-1)
-        rates = np.broadcast_to(rates, J.shape[:-1])
+        # (rates may hold more configurations than the positions: the columns of a jet)
+        rates = np.broadcast_to(rates, np.broadcast_shapes(rates.shape, J.shape[:-1]))
         pd = np.linalg.solve(J, rates[..., None])[..., 0]
         return chart.inner.velocities(kin, _pack(list(np.moveaxis(pd, -1, 0))))
 
     def accelerations(self, kin, qdd, keep=False):
         """p'' = J^-1 (q'' - f''), f'' the replaced angles' second rates at p'' = 0."""
         chart, _, J, _ = kin.substitute
-        shape = J.shape[:-2]
+        shape = np.broadcast_shapes(J.shape[:-2], *(np.shape(v) for v in kin.vel.values()))
         zero = [np.zeros(shape) for _ in range(self.n)]
         chart.inner.accelerations(kin, _pack(zero), keep=True)
         curvature = np.zeros(shape + (self.n,))

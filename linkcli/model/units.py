@@ -139,10 +139,11 @@ class Units:
             value = math.fmod(value, turn)
         return value * self.factor("angle")
 
-    def show(self, dim, kind: str | None = None) -> tuple[str, float]:
+    def show(self, dim, kind: str | None = None, unit: str | None = None) -> tuple[str, float]:
         """(unit name, SI factor) of a value of Dimension ``dim`` in this file's units
-        (:func:`show`): the one place an answer's display unit is decided."""
-        return show(self, dim, kind)
+        (:func:`show`): the one place an answer's display unit is decided.  ``unit``: the
+        unit a quantity names for itself (``unit: Hz``), which must be of ``dim``."""
+        return show(self, dim, kind, unit)
 
     # display units of derived quantities -------------------------------------
     def display(self, base: str, order: int) -> tuple[str, float]:
@@ -269,11 +270,20 @@ def unit_dimension(name: str):
     return None
 
 
-def show(units, dim, kind=None) -> tuple[str, float]:
+def show(units, dim, kind=None, unit=None) -> tuple[str, float]:
     """(unit name, SI factor) of a value of dimension ``dim`` in the file's units: the
-    file's unit of ``kind`` (or of the kind the dimension is shown as); else a product of
-    the file's named units (a force, a length, a mass, a time, an angle) with the fewest
-    factors, written as ``N/rad``, ``kg mm``, ``mm/deg``; a pure number has no unit."""
+    quantity's own ``unit`` when it names one; else the file's unit of ``kind`` (or of the
+    kind the dimension is shown as); else a product of the file's named units (a force, a
+    length, a mass, a time, an angle) with the fewest factors, written as ``N/rad``,
+    ``kg mm``, ``mm/deg``; a pure number has no unit."""
+    if unit is not None:
+        named = unit_dimension(unit)
+        if kind is not None and unit in KINDS[kind]:
+            named = (kind, DIMENSIONS[kind], KINDS[kind][unit])
+        if named is None or named[1] != dim:
+            raise InputError(f"unit '{unit}' is not a unit of {dim.text()}",
+                             hint="give a unit of the quantity's own kind")
+        return unit, named[2]
     if kind is not None and DIMENSIONS[kind] == dim:
         return units.names[kind], units.factor(kind)
     named = SHOWN_AS.get(dim)

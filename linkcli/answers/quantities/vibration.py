@@ -1,39 +1,85 @@
-"""The report of a vibration problem: every asked quantity in its display unit.
+"""The report of a vibration problem: every asked quantity in the file's units.
 
-Frequencies are in the file's frequency unit (rad/s by default) unless the
-quantity says otherwise; equilibrium values and amplitudes of coordinates in
-the coordinate's unit (the file's angle or length unit), phases in the angle
-unit (the response lags the excitation when negative); matrix entries, spring
-forces and force amplitudes in SI (kg, kg m, kg m^2; N/m, N/rad, N m/rad;
-N s/m ...; N or N m).  A mode shape component is the ratio of that
-coordinate to the first one in the mode (SI units: m/rad for a length against
-an angle).  Geometric quantities of the position section are evaluated at the
-equilibrium.
+Each answer is computed in SI with its dimension (:class:`Answer`) and shown in the unit
+``Units.show`` decides from it (model/units.py), the one place that picks display units:
+
+- frequencies in the file's frequency unit (or the quantity's ``unit:``), damping ratios
+  and mode-shape ratios of like coordinates as pure numbers;
+- coordinates (equilibrium, amplitudes, free response) in the file's length or angle unit,
+  phases in its angle unit (negative when the response lags the excitation, in
+  [-180, 180) deg: a response in opposition is -180, the limit of a vanishing damping);
+- spring forces and force amplitudes in its force unit (torque unit for torsional
+  elements);
+- matrix entries in its mass, inertia, stiffness or damping units where both coordinates
+  are of one kind, else in a product of its units (kg mm, N/deg, Ns/deg);
+- a mode shape component is the ratio of that coordinate to the reference coordinate (the
+  first free one) in the mode: mm/deg for a length against an angle.
+
+Geometric quantities of the position section are evaluated at the equilibrium.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from linkcli.answers.quantities import collect
-from linkcli.errors import InputError, SolveError
+from linkcli.errors import InputError, ModeError, SolveError
 from linkcli.forces import vibration as vib
+from linkcli.forces.equilibrium import free_coordinates
 from linkcli.forces.lagrange import Lagrangian
 from linkcli.kinematics import jacobian as jac
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import VIBRATION, split_rate
-from linkcli.model.units import ANGLE, FREQUENCY, LENGTH
+from linkcli.model.units import ANGLE_DIM, DIMENSIONS, Dimension, FORCE_DIM, LENGTH_DIM, \
+    MASS_DIM, NONE, TIME_DIM
 
-#: SI unit names of matrix entries, by (base of row, base of column)
-MATRIX_UNITS = {
-    "mass_matrix": {("length", "length"): "kg", ("angle", "angle"): "kg m^2",
-                    ("length", "angle"): "kg m", ("angle", "length"): "kg m"},
-    "stiffness_matrix": {("length", "length"): "N/m", ("angle", "angle"): "Nm/rad",
-                         ("length", "angle"): "N/rad", ("angle", "length"): "N/rad"},
-    "damping_matrix": {("length", "length"): "Ns/m", ("angle", "angle"): "Nms/rad",
-                       ("length", "angle"): "Ns/rad", ("angle", "length"): "Ns/rad"},
-}
+FREQUENCY_DIM = DIMENSIONS["frequency"]
+#: per matrix, the dimension of an entry between two lengths; each angle coordinate brings
+#: its lever arm (a length), and stiffness and damping are per radian (N/rad, Nm/rad)
+MATRIX_DIMS = {"mass_matrix": MASS_DIM, "stiffness_matrix": FORCE_DIM / LENGTH_DIM,
+               "damping_matrix": FORCE_DIM * TIME_DIM / LENGTH_DIM}
+
+
+@dataclass(frozen=True)
+class Answer:
+    """One answer in SI, its dimension, and the kind of unit it is shown in (None: decided
+    from the dimension alone).  ``turn``: an angle shown within one turn, [0, 360) deg."""
+
+    value: float
+    dim: Dimension
+    kind: str | None = None
+    turn: bool = False
+
+
+def shown(units, answer: Answer, unit: str | None = None) -> tuple[float, str]:
+    """(value, unit) of ``answer`` in the file's ``units`` (``unit``: the quantity's own)."""
+    name, factor = units.show(answer.dim, answer.kind, unit)
+    value = answer.value / factor
+    if answer.turn:
+        turn = 2 * math.pi / factor
+        value = value % turn
+        value = 0.0 if value > turn * (1 - 1e-12) else value
+    return float(value), name
+
+
+def coordinate_dim(mech, j) -> Dimension:
+    """The dimension of coordinate j: an angle or a length."""
+    return ANGLE_DIM if mech.coordinates[j].base == "angle" else LENGTH_DIM
+
+
+def generalised_force_dim(mech, j) -> Dimension:
+    """The dimension of the generalised force of coordinate j: a torque for an angle (the
+    work per radian), a force for a length."""
+    return FORCE_DIM * LENGTH_DIM if mech.coordinates[j].base == "angle" else FORCE_DIM
+
+
+def matrix_dim(kind, mech, i, j) -> Dimension:
+    """The dimension of entry (i, j) of the mass, stiffness or damping matrix."""
+    angles = [mech.coordinates[c].base for c in (i, j)].count("angle")
+    dim = MATRIX_DIMS[kind] * LENGTH_DIM ** angles
+    return dim / ANGLE_DIM if angles and kind != "mass_matrix" else dim
 
 
 @dataclass
@@ -51,8 +97,8 @@ class Analysis:
 
     def damped(self) -> vib.Damped:
         if "damped" not in self.cache:
-            self.modes()                 # refuses an unstable equilibrium first
-            self.cache["damped"] = vib.damped(self.lin)
+            # the modes first: they refuse an unstable equilibrium
+            self.cache["damped"] = vib.damped(self.lin, self.modes())
         return self.cache["damped"]
 
     def amplitudes(self):
@@ -69,8 +115,21 @@ class Analysis:
         return self.cache["X"]
 
 
+#: the most coordinates a vibration analysis takes: its second derivatives are n (n + 1) / 2
+#: rates of the mechanism and its time grows as n^3 (benchmarks/vibration.py: a chain of 500
+#: masses takes about 10 times a chain of 200)
+MAX_COORDINATES = 500
+
+
 def analyse(mech) -> Analysis:
     """Equilibrium and linearisation of ``mech`` (SI)."""
+    count = len(mech.coordinates)
+    if count > MAX_COORDINATES:
+        raise InputError(f"{count} coordinates: a vibration analysis takes at most "
+                         f"{MAX_COORDINATES} (its second derivatives are n (n + 1) / 2 rates "
+                         "of the mechanism: its time grows as n^3)", file=mech.file,
+                         key="coordinates", hint="model the system with fewer degrees of "
+                         "freedom, a continuous one by its first modes")
     lag = Lagrangian(mech, solver_for(mech))
     return Analysis(mech, vib.linearise(lag))
 
@@ -97,14 +156,22 @@ def evaluate(mech, names, result):
     for name in names:
         quantity = mech.quantities[name]
         if quantity.kind in VIBRATION:
-            value, unit = value_of(analysis, quantity)
-            if not np.isfinite(value):
-                raise SolveError(f"'{name}' is not a finite number", file=mech.file)
-            result.values[name] = value
-            result.units[name] = unit
+            answer = answer_of(analysis, quantity)
+            if not math.isfinite(answer.value):
+                raise SolveError(f"'{name}' is not a finite number: "
+                                 f"{_why_not_finite(answer.value)}", file=mech.file,
+                                 hint="check the magnitudes of masses, stiffnesses, lengths "
+                                 "and the excitation")
+            result.values[name], result.units[name] = shown(mech.units, answer, quantity.unit)
     result.analysis = analysis
     result.cautions = list(analysis.lin.eq.cautions) + road_lift_off(analysis)
     return result
+
+
+def _why_not_finite(value) -> str:
+    if math.isnan(value):
+        return "its computation is undefined (zero over zero or infinity less infinity)"
+    return "it overflows floating-point arithmetic: its SI value exceeds 1.8e308"
 
 
 def road_lift_off(analysis) -> list:
@@ -127,10 +194,18 @@ def road_lift_off(analysis) -> list:
     if dynamic <= static:
         return []
     from linkcli.errors import Caution
+    force = generalised_force_dim(mech, j)
+    text = {}
+    for label, value, dim, kind in (("dynamic", dynamic, force, None),
+                                    ("static", static, force, None),
+                                    ("Omega", w, FREQUENCY_DIM, "frequency")):
+        number, unit = shown(mech.units, Answer(value, dim, kind))
+        text[label] = f"{number:.6g} {unit}"
     return [Caution("contact", f"the wheel lifts off the road: the dynamic contact force "
-                    f"amplitude {dynamic:.6g} N exceeds the static load {static:.6g} N at "
-                    f"Omega = {w:.6g} rad/s; the linear response assumes a contact the wheel "
-                    "does not keep", mech.file, {mech.coordinates[j].name: dynamic})]
+                    f"amplitude {text['dynamic']} exceeds the static load {text['static']} at "
+                    f"Omega = {text['Omega']}; the linear response assumes a contact the "
+                    "wheel does not keep", mech.file,
+                    {mech.coordinates[j].name: shown(mech.units, Answer(dynamic, force))[0]})]
 
 
 def _coordinate(mech, name) -> int:
@@ -146,19 +221,10 @@ def _free_index(analysis, name) -> int:
     return analysis.lin.free.index(j)
 
 
-def _coordinate_unit(mech, j):
-    base = mech.coordinates[j].base
-    unit = mech.units.names["angle" if base == "angle" else "length"]
-    return unit, (ANGLE if base == "angle" else LENGTH)[unit]
-
-
-def _coordinate_value(mech, j, q):
-    """(value, unit) of coordinate j of ``q`` (SI) in its display unit; angles in [0, 360)."""
-    unit, factor = _coordinate_unit(mech, j)
-    value = q[j] / factor
-    if mech.coordinates[j].base == "angle":
-        value = value % (360.0 if unit == "deg" else 2 * np.pi)
-    return float(value), unit
+def _coordinate_answer(mech, j, value, turn=False) -> Answer:
+    """Coordinate j's ``value`` (SI); ``turn``: an angle shown within one turn."""
+    angle = mech.coordinates[j].base == "angle"
+    return Answer(float(value), coordinate_dim(mech, j), turn=turn and angle)
 
 
 def _mode(analysis, quantity) -> int:
@@ -171,40 +237,70 @@ def _mode(analysis, quantity) -> int:
     return k
 
 
-def value_of(analysis: Analysis, quantity):
-    """(value, unit) of one vibration quantity."""
+def answer_of(analysis: Analysis, quantity) -> Answer:
+    """One vibration quantity in SI, with its dimension (:func:`dimension_of`)."""
+    mech = analysis.mech
+    dim, kind = dimension_of(mech, quantity)
+    turn = quantity.kind == "equilibrium" and dim == ANGLE_DIM
+    return Answer(si_value(analysis, quantity), dim, kind, turn)
+
+
+FREQUENCIES = ("natural_frequency", "damped_frequency", "forcing_frequency")
+
+
+def dimension_of(mech, quantity) -> tuple:
+    """(Dimension, kind of unit it is shown in or None) of a vibration quantity, from the
+    file alone: what ``Units.show`` needs to decide its unit."""
+    kind = quantity.kind
+    if kind in FREQUENCIES:
+        return FREQUENCY_DIM, "frequency"
+    if kind == "damping_ratio":
+        return NONE, None
+    if kind == "phase":
+        return ANGLE_DIM, "angle"
+    if kind.endswith("_matrix"):
+        return matrix_dim(kind, mech, _coordinate(mech, quantity.a),
+                          _coordinate(mech, quantity.b)), None
+    if kind == "mode_shape":
+        reference = free_coordinates(mech)[vib.REFERENCE]
+        return (coordinate_dim(mech, _coordinate(mech, quantity.b))
+                / coordinate_dim(mech, reference)), None
+    if kind == "spring_force":
+        return _element_force(mech.elements.springs[quantity.a])
+    if kind == "force_amplitude":
+        return _elements_force(mech, quantity)
+    dim = LENGTH_DIM if quantity.component is not None else \
+        coordinate_dim(mech, _coordinate(mech, quantity.a))
+    if kind == "transmissibility":
+        supports = mech.elements.supports.values()
+        if supports:
+            support = max(supports, key=lambda item: abs(item.amplitude))
+            dim = dim / coordinate_dim(mech, support.coordinate)
+    return dim, None
+
+
+def si_value(analysis: Analysis, quantity) -> float:
+    """One vibration quantity in SI (rad/s, m, rad, N, kg ...)."""
+    kind = quantity.kind
+    if kind in FREQUENCIES:
+        return _frequency(analysis, quantity)
+    if kind == "damping_ratio":
+        k = _mode(analysis, quantity)
+        _require_stiffness(analysis, quantity, k, "its damping ratio c / (2 sqrt(k m))")
+        return float(analysis.damped().zeta[k])
+    if kind == "mode_shape":
+        return _mode_shape(analysis, quantity)
     mech = analysis.mech
     lin = analysis.lin
-    kind = quantity.kind
-    if kind in ("natural_frequency", "damped_frequency", "forcing_frequency"):
-        unit = quantity.unit or mech.units.names["frequency"]
-        if kind == "natural_frequency":
-            omega = analysis.modes().omega[_mode(analysis, quantity)]
-        elif kind == "damped_frequency":
-            omega = analysis.damped().omega_d[_mode(analysis, quantity)]
-        else:
-            if lin.frequency is None:
-                raise InputError("no excitation frequency in this file", file=mech.file,
-                                 key=f"quantities.{quantity.name}")
-            omega = lin.frequency
-        return float(omega) / FREQUENCY[unit], unit
-    if kind == "damping_ratio":
-        return float(analysis.damped().zeta[_mode(analysis, quantity)]), ""
-    if kind == "mode_shape":
-        shapes = analysis.modes().shapes
-        return float(shapes[_free_index(analysis, quantity.b), _mode(analysis, quantity)]), ""
     if kind.endswith("_matrix"):
         i, j = _coordinate(mech, quantity.a), _coordinate(mech, quantity.b)
         matrix = {"mass_matrix": lin.eq.terms.M, "stiffness_matrix": lin.eq.terms.K,
                   "damping_matrix": lin.eq.terms.R}[kind]
-        bases = (mech.coordinates[i].base, mech.coordinates[j].base)
-        return float(matrix[i, j]), MATRIX_UNITS[kind][bases]
+        return float(matrix[i, j])
     if kind == "equilibrium":
-        return _coordinate_value(mech, _coordinate(mech, quantity.a), lin.eq.q)
+        return float(lin.eq.q[_coordinate(mech, quantity.a)])
     if kind == "spring_force":
-        spring = mech.elements.springs[quantity.a]
-        return float(lin.eq.terms.forces[quantity.a]), \
-            "Nm" if spring.measure.kind == "angle" else "N"
+        return float(lin.eq.terms.forces[quantity.a])
     if kind == "free_response":
         j = _free_index(analysis, quantity.a)
         x0 = np.zeros(len(lin.free))
@@ -212,75 +308,204 @@ def value_of(analysis: Analysis, quantity):
         for c, (dx, dv) in mech.elements.initial.items():
             if c in lin.free:
                 x0[lin.free.index(c)], v0[lin.free.index(c)] = dx, dv
-        x = vib.free_response(lin, x0, v0, [quantity.time])[0, j]
-        unit, factor = _coordinate_unit(mech, lin.free[j])
-        return float(x) / factor, unit
-    # steady-state response
+        return float(vib.free_response(lin, x0, v0, [quantity.time])[0, j])
+    return _steady(analysis, quantity)
+
+
+def _frequency(analysis, quantity) -> float:
+    """A natural or damped frequency of a mode, or the forcing frequency (rad/s)."""
+    lin = analysis.lin
+    kind = quantity.kind
+    if kind == "natural_frequency":
+        return float(analysis.modes().omega[_mode(analysis, quantity)])
+    if kind == "forcing_frequency":
+        if lin.frequency is None:
+            raise InputError("no excitation frequency in this file", file=analysis.mech.file,
+                             key=f"quantities.{quantity.name}")
+        return float(lin.frequency)
+    k = _mode(analysis, quantity)
+    _require_stiffness(analysis, quantity, k, "it has no damped frequency")
+    damped = analysis.damped()
+    if not damped.oscillates[k]:
+        zeta = float(damped.zeta[k])
+        rates = _rates(analysis, damped.decay(k))
+        critical = abs(damped.roots[k, 0].imag) > 0
+        how = (f"critically damped (zeta = {zeta:.6g}): it returns without oscillating, "
+               f"at the decay rate {rates[0]}") if critical else \
+            (f"overdamped (zeta = {zeta:.6g}): it returns without oscillating, as the sum of "
+             f"two decays at the rates {rates[0]} and {rates[1]}")
+        raise ModeError(f"'{quantity.name}': mode {k + 1} is {how}, so it has no damped "
+                        "frequency", file=analysis.mech.file, mode=k + 1,
+                        reason="critically damped" if critical else "overdamped",
+                        values=damped.decay(k),
+                        hint="ask its damping_ratio; a damped frequency needs zeta < 1")
+    return float(damped.omega_d[k])
+
+
+def _rates(analysis, values) -> list:
+    """Decay rates (1/s) as text in the file's units."""
+    out = []
+    for value in values:
+        number, unit = shown(analysis.mech.units, Answer(float(value), Dimension(time=-1)))
+        out.append(f"{number:.6g} {unit}")
+    return out
+
+
+def _require_stiffness(analysis, quantity, k, what) -> None:
+    """Refuse a damping answer of a mode that nothing holds (natural frequency 0)."""
+    if analysis.modes().omega[k] > 0:
+        return
+    roots = ", ".join(f"{-r:.6g}" if r else "0" for r in analysis.damped().decay(k))
+    unit = shown(analysis.mech.units, Answer(1.0, Dimension(time=-1)))[1]
+    raise ModeError(f"'{quantity.name}': mode {k + 1} has no stiffness (natural frequency 0: "
+                    f"no spring or gravity holds it at the equilibrium), so {what} is "
+                    f"undefined; its roots are s = {roots} {unit}", file=analysis.mech.file,
+                    mode=k + 1, reason="no stiffness", values=analysis.damped().decay(k),
+                    hint="add a spring or gravity that holds the mode, or ask only for its "
+                    "natural frequency")
+
+
+def _mode_shape(analysis, quantity) -> float:
+    """Coordinate q of mode k over the reference coordinate (the first free one)."""
+    mech = analysis.mech
+    lin = analysis.lin
+    k = _mode(analysis, quantity)
+    i = _free_index(analysis, quantity.b)
+    found = analysis.modes()
+    ref = vib.REFERENCE
+    names = lin.names
+    if found.repeated[k]:
+        others = " and ".join(str(j + 1) for j in [k] + found.repeated[k])
+        number, unit = shown(mech.units, Answer(float(found.omega[k]), FREQUENCY_DIM,
+                                                "frequency"))
+        raise ModeError(f"'{quantity.name}': modes {others} share the natural frequency "
+                        f"{number:.6g} {unit}, so their shapes are any combination of theirs: "
+                        "a component of one of them is not defined", file=mech.file,
+                        mode=k + 1, reason="repeated", values=(found.omega[k],),
+                        hint="make a mass or a spring slightly different to break the "
+                        "symmetry, or ask for the frequency only")
+    if not found.moves(ref, k):
+        largest = names[int(np.argmax(found.size[:, k] >= 1 - 1e-6))]    # the first of ties
+        raise ModeError(f"'{quantity.name}': the mode shapes are normalised by {names[ref]} "
+                        f"(the first free coordinate), and {names[ref]} does not move in mode "
+                        f"{k + 1}: it moves less than {found.still[k]:.1e} of the largest "
+                        f"component ({largest}'s, in energy), zero within the eigenvector's "
+                        f"accuracy, so the ratio {names[i]}/{names[ref]} is undefined",
+                        file=mech.file, mode=k + 1, reason="does not move",
+                        values=(found.size[ref, k],),
+                        hint=f"list first under 'coordinates:' a coordinate that moves in "
+                        f"mode {k + 1}, such as {largest}: the shapes are normalised by the "
+                        "first")
+    return float(found.shapes[i, k])
+
+
+def _element_force(element) -> tuple:
+    """(dimension, kind) of the force of a spring or damper: a torque for a torsional one."""
+    if element.measure.kind == "angle":
+        return DIMENSIONS["torque"], "torque"
+    return FORCE_DIM, "force"
+
+
+def _steady(analysis, quantity) -> float:
+    """Amplitude, phase, transmissibility of a coordinate or a point's x or y, or the
+    amplitude of the force through springs and dampers, at the excitation frequency."""
+    mech = analysis.mech
+    lin = analysis.lin
+    kind = quantity.kind
     X = analysis.amplitudes()
     if kind == "force_amplitude":
-        omega = lin.frequency
-        total = 0j
-        for name in quantity.elements:
-            s = lin.eq.terms.measures[name]
-            ds = np.dot(np.asarray(s.grad, dtype=float), X)
-            spring = mech.elements.springs.get(name)
-            gain = spring.stiffness if spring is not None else \
-                1j * omega * mech.elements.dampers[name].coefficient
-            total += gain * ds
-        elements = {**mech.elements.springs, **mech.elements.dampers}
-        torsional = all(elements[n].measure.kind == "angle" for n in quantity.elements)
-        return float(abs(total)), "Nm" if torsional else "N"
+        return _force_amplitude(analysis, quantity, X)
     if quantity.component is not None:        # a point's coordinate
         jt = lin.eq.terms.jet
         direction = 1 + 0j if quantity.component == "x" else 1j
         s = jac.along(jt, None, quantity.a, direction)
         amp = np.dot(np.asarray(s.grad, dtype=float), X)
-        unit = mech.units.names["length"]
-        factor = LENGTH[unit]
     else:
-        j = _coordinate(mech, quantity.a)
-        amp = X[j]
-        unit, factor = _coordinate_unit(mech, j)
+        amp = X[_coordinate(mech, quantity.a)]
     if kind == "amplitude":
-        return float(abs(amp)) / factor, unit
+        return float(abs(amp))
     if kind == "phase":
-        angle_unit = mech.units.names["angle"]
-        phase = float(np.angle(amp))
-        if phase <= -np.pi + 1e-12:        # in (-180, 180]: opposition is +180, whatever 0's sign
-            phase += 2 * np.pi
-        return phase / ANGLE[angle_unit], angle_unit
+        return float(phase(amp))
     # transmissibility: |response| / |imposed amplitude|
     if not lin.imposed:
         raise InputError(f"'{quantity.name}': a transmissibility needs a support motion",
                          file=mech.file, key=f"quantities.{quantity.name}",
                          hint="for a harmonic force, ask force_amplitude of the springs and "
                          "dampers that hold the support, and divide by the force")
-    return float(abs(amp) / np.max(np.abs(lin.supports))), ""
+    return float(abs(amp) / np.max(np.abs(lin.supports)))
+
+
+def phase(amplitude):
+    """The phase of complex amplitudes against the excitation (rad), in [-pi, pi): negative
+    when the response lags.  A response in opposition is -pi whatever the sign of its zero
+    imaginary part, the limit of a vanishing damping (the response of one degree of
+    freedom lags by 0 to 180 deg); 0 is never -0."""
+    value = np.angle(amplitude)
+    return np.where(value >= math.pi * (1 - 1e-12), value - 2 * math.pi, value) + 0.0
+
+
+def _elements_force(mech, quantity) -> tuple:
+    """(dimension, kind) of the sum of the forces of a force amplitude's elements: torques
+    or forces, not both."""
+    elements = {**mech.elements.springs, **mech.elements.dampers}
+    kinds = {_element_force(elements[n]) for n in quantity.elements}
+    if len(kinds) > 1:
+        raise InputError(f"'{quantity.name}': force_amplitude adds the forces of "
+                         f"{', '.join(quantity.elements)}, and some are torsional (torques) "
+                         "and some not (forces)", file=mech.file,
+                         key=f"quantities.{quantity.name}",
+                         hint="ask the torsional and the other elements apart")
+    return kinds.pop()
+
+
+def _force_amplitude(analysis, quantity, X) -> float:
+    """|sum of k s' + i Omega c s'| over the elements (s' the amplitude of their measure)."""
+    mech = analysis.mech
+    lin = analysis.lin
+    total = 0j
+    for name in quantity.elements:
+        s = lin.eq.terms.measures[name]
+        ds = np.dot(np.asarray(s.grad, dtype=float), X)
+        spring = mech.elements.springs.get(name)
+        gain = spring.stiffness if spring is not None else \
+            1j * lin.frequency * mech.elements.dampers[name].coefficient
+        total += gain * ds
+    return float(abs(total))
 
 
 # --- explain ---------------------------------------------------------------------------
-def _matrix(name, matrix, names, unit) -> list:
+def _text(units, answer: Answer) -> str:
+    """An answer as '12.3 unit' in the file's units."""
+    value, unit = shown(units, answer)
+    return f"{value:.6g} {unit}".rstrip()
+
+
+def _matrix(mech, name, kind, matrix, free) -> list:
+    """``matrix`` (SI) in the file's units: one unit for it where every entry has the same,
+    else each row followed by its entries' units."""
+    names = [mech.coordinates[j].name for j in free]
     width = max(len(n) for n in names)
-    rows = [f"  {name} ({unit}) =" if unit else f"  {name} ="]
-    for label, row in zip(names, matrix):
-        rows.append(f"    {label:<{width}} [" + "  ".join(f"{v:>12.6g}" for v in row) + " ]")
+    shown_rows = [[shown(mech.units, Answer(float(matrix[a, b]), matrix_dim(kind, mech, i, j)))
+                   for b, j in enumerate(free)] for a, i in enumerate(free)]
+    units = {unit for row in shown_rows for _, unit in row}
+    one = len(units) == 1
+    rows = [f"  {name} ({units.pop()}) =" if one else f"  {name} ="]
+    for label, row in zip(names, shown_rows):
+        text = f"    {label:<{width}} [" + "  ".join(f"{v:>12.6g}" for v, _ in row) + " ]"
+        rows.append(text if one else text + "  " + ", ".join(u for _, u in row))
     return rows
 
 
-def _units_of(mech, free, kind):
-    bases = {mech.coordinates[j].base for j in free}
-    return MATRIX_UNITS[kind][(bases.pop(),) * 2] if len(bases) == 1 else "SI"
-
-
 def explain_lines(mech) -> list:
-    """Energies, Lagrange's equations, the equilibrium and the linearised system, with
-    the numbers (SI), as the worked solutions write them."""
+    """Energies (SI), Lagrange's equations, the equilibrium and the linearised system, with
+    the numbers in the file's units, as the worked solutions write them."""
     analysis = analyse(mech)
     lin = analysis.lin
     lag = lin.lag
     names = [c.name for c in mech.coordinates]
     dyn = mech.dynamics
     el = mech.elements
+    units = mech.units
     lines = ["Energies (SI units; s is each element's measure, s0 its free value)"]
     kinetic = []
     for m in lin.eq.terms.masses:
@@ -307,40 +532,90 @@ def explain_lines(mech) -> list:
     lines += ["", "Static equilibrium (" + ("the figure" if el.equilibrium == "figure"
                                             else "solved from the figure") + ")"]
     for j, c in enumerate(mech.coordinates):
-        value, unit = _coordinate_value(mech, j, eq.q)
         state = "imposed" if j in lin.imposed else "free"
-        lines.append(f"  {c.name} = {value:.6g} {unit} ({state})")
+        value = _text(units, _coordinate_answer(mech, j, eq.q[j], turn=True))
+        lines.append(f"  {c.name} = {value} ({state})")
     for name, force in eq.terms.forces.items():
         chosen = " (chosen so that the figure is an equilibrium)" if name in eq.preloads else ""
-        lines.append(f"  spring {name}: force N = {force:.6g}{chosen}")
+        value = _text(units, Answer(force, *_element_force(el.springs[name])))
+        lines.append(f"  spring {name}: force N = {value}{chosen}")
     lines.append(f"  residual |Q| = {eq.relative:.2e} of the load scale")
-    free_names = [names[j] for j in lin.free]
     lines += ["", "Linearised about the equilibrium: M x'' + R x' + K x = F e^{i Omega t}"]
-    lines += _matrix("M", lin.M, free_names, _units_of(mech, lin.free, "mass_matrix"))
-    lines += _matrix("K", lin.K, free_names, _units_of(mech, lin.free, "stiffness_matrix"))
+    lines += _matrix(mech, "M", "mass_matrix", lin.M, lin.free)
+    lines += _matrix(mech, "K", "stiffness_matrix", lin.K, lin.free)
     if len(lin.free) == 1:
-        lines.append(f"  one degree of freedom: m* = {lin.M[0, 0]:.6g}, k* = {lin.K[0, 0]:.6g}"
-                     + (f", r* = {lin.R[0, 0]:.6g}" if el.dampers else "")
+        j = lin.free[0]
+        reduced = [f"{label} = " + _text(units, Answer(matrix[0, 0], matrix_dim(kind, mech, j, j)))
+                   for label, kind, matrix in (("m*", "mass_matrix", lin.M),
+                                               ("k*", "stiffness_matrix", lin.K),
+                                               ("r*", "damping_matrix", lin.R))
+                   if el.dampers or label != "r*"]
+        lines.append("  one degree of freedom: " + ", ".join(reduced)
                      + " (reduced mass or inertia, stiffness, damping)")
     if el.dampers:
-        lines += _matrix("R", lin.R, free_names, _units_of(mech, lin.free, "damping_matrix"))
+        lines += _matrix(mech, "R", "damping_matrix", lin.R, lin.free)
     if lin.frequency is not None:
         amps = lin.load(lin.frequency)
-        lines.append(f"  Omega = {lin.frequency:.6g} rad/s, F = [" +
-                     ", ".join(f"{abs(a):.6g} at {np.degrees(np.angle(a)):.4g} deg"
-                               for a in amps) + "]")
+        forces = [f"{_text(units, Answer(abs(a), generalised_force_dim(mech, j)))} at "
+                  f"{_text(units, Answer(float(np.angle(a)), ANGLE_DIM, 'angle'))}"
+                  for a, j in zip(amps, lin.free)]
+        lines.append(f"  Omega = {_text(units, Answer(lin.frequency, FREQUENCY_DIM, 'frequency'))}"
+                     f", F = [" + ", ".join(forces) + "]")
     try:
-        modes = analysis.modes()
+        found = analysis.modes()
     except SolveError as exc:
         return lines + ["", f"  {exc.detail}"]
-    lines += ["", "Natural frequencies and modes (K u = omega^2 M u)"]
-    for k, w in enumerate(modes.omega):
-        shape = ", ".join(f"{free_names[i]} {modes.shapes[i, k]:.6g}" for i in range(len(free_names)))
-        lines.append(f"  mode {k + 1}: omega = {w:.6g} rad/s = {w / (2 * np.pi):.6g} Hz; "
-                     f"shape {shape}")
-    if el.dampers:
-        d = analysis.damped()
-        for k in range(len(d.zeta)):
-            lines.append(f"  damped {k + 1}: zeta = {d.zeta[k]:.6g}, "
-                         f"omega_d = {d.omega_d[k]:.6g} rad/s")
+    return lines + _mode_lines(analysis, found)
+
+
+def shape_text(analysis, k) -> str:
+    """Mode k's shape as 'x1 1, theta 0.0602 deg/mm' in the file's units (each coordinate
+    over the reference, the first free one), and a note where the reference does not move
+    (the shape is then scaled to its largest component)."""
+    mech = analysis.mech
+    lin = analysis.lin
+    found = analysis.modes()
+    names = lin.names
+    ref = vib.REFERENCE
+    ref_dim = coordinate_dim(mech, lin.free[ref])
+    parts = [f"{names[i]} " + _text(mech.units, Answer(
+        float(found.shapes[i, k]), coordinate_dim(mech, lin.free[i]) / ref_dim))
+        for i in range(len(names))]
+    note = "" if found.moves(ref, k) else f" ({names[ref]} does not move: scaled to the largest)"
+    return ", ".join(parts) + note
+
+
+def _mode_lines(analysis, found) -> list:
+    """The natural frequencies and mode shapes, and the damping of each mode."""
+    mech = analysis.mech
+    lin = analysis.lin
+    units = mech.units
+    free_names = lin.names
+    ref = vib.REFERENCE
+    lines = ["", f"Natural frequencies and modes (K u = omega^2 M u; shapes normalised by "
+             f"{free_names[ref]} = 1)"]
+    for k, w in enumerate(found.omega):
+        freq = _text(units, Answer(float(w), FREQUENCY_DIM, "frequency"))
+        if units.names["frequency"] != "Hz":
+            freq += f" = {w / (2 * np.pi):.6g} Hz"
+        lines.append(f"  mode {k + 1}: omega = {freq}; shape {shape_text(analysis, k)}")
+    if not mech.elements.dampers:
+        return lines
+    d = analysis.damped()
+    for k in range(len(found.omega)):
+        if found.omega[k] == 0:
+            roots = ", ".join(f"{-r:.6g}" if r else "0" for r in d.decay(k))
+            lines.append(f"  damped {k + 1}: no stiffness, roots s = {roots} "
+                         f"{shown(units, Answer(1.0, Dimension(time=-1)))[1]}")
+        elif d.oscillates[k]:
+            wd = _text(units, Answer(float(d.omega_d[k]), FREQUENCY_DIM, "frequency"))
+            lines.append(f"  damped {k + 1}: zeta = {d.zeta[k]:.6g}, omega_d = {wd}")
+        else:
+            rates = " and ".join(_rates(analysis, d.decay(k)))
+            lines.append(f"  damped {k + 1}: zeta = {d.zeta[k]:.6g}, overdamped: decay "
+                         f"rates {rates}")
+    if np.any(d.share < 1 - 1e-6):
+        lines.append("  (damping couples the modes: each pair of roots is the undamped mode "
+                     "its motion is most made of; shares " +
+                     ", ".join(f"{x:.3g}" for x in d.share) + ")")
     return lines

@@ -7,13 +7,25 @@ a vibration problem, declared with coordinates, at its static equilibrium
 from __future__ import annotations
 
 from linkcli.answers import quantities
-from linkcli.answers.quantities import Result
+from linkcli.answers.quantities import Result, expressions
 from linkcli.errors import InputError
 
 
 def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
              tol=None) -> Result:
-    """Every name of ``names`` (default: the report's) in its display unit."""
+    """Every name of ``names`` (default: the report's) in its display unit; expression
+    quantities worked out from the answers they read (``quantities.expressions``)."""
+    names = list(names) if names is not None else quantities.report_names(mech)
+    solve, exprs = expressions.expand(mech, names)
+    if not exprs:
+        return _evaluate(mech, q, qdot, qddot, names, method, tol)
+    result = _evaluate(mech, q, qdot, qddot, solve, method, tol)
+    expressions.complete(mech, result, names, exprs)
+    return result
+
+
+def _evaluate(mech, q, qdot, qddot, names, method, tol) -> Result:
+    """``names`` (none an expression) by the path they need."""
     if mech.elements is None:       # a file with a driver: no vibration modules to import
         if _asks_limits(mech, names):   # maxima, strokes ...: answers.limits
             from linkcli.answers import limits
@@ -24,8 +36,7 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
         raise InputError("a vibration problem is solved at its static equilibrium: it takes no "
                          "driver values, rates or method", file=mech.file,
                          hint="drop q, qdot, qddot and --method")
-    names = list(names) if names is not None else quantities.report_names(mech)
-    return vibration.evaluate(mech, names, Result(mech))
+    return vibration.evaluate(mech, list(names), Result(mech))
 
 
 def _asks_limits(mech, names) -> bool:

@@ -16,6 +16,7 @@ from linkcli.input.source import Document
 from linkcli.input.report import SECTIONS, AnswersSection
 from linkcli.input.bodies import BodiesSection
 from linkcli.input.contacts import ContactsSection
+from linkcli.input.derived import DerivedSection
 from linkcli.input.dynamics import DynamicsReader
 from linkcli.input.elements import ElementsReader
 from linkcli.input.loads import LoadsSection
@@ -31,7 +32,8 @@ __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS
            "NAME", "_Skip"]
 
 
-class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSection):
+class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSection,
+             DerivedSection):
     """The whole document: units, params, frame and points, then each section."""
 
     def parse(self) -> Mechanism:
@@ -97,6 +99,9 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                                "coordinates, give forces, torques or axial loads")
         if "dynamics" in data:
             mech.dynamics = DynamicsReader(self, mech, _Skip).run(data["dynamics"])
+        mech.param_kinds = {name: kinds.pop() for name, kinds in self.uses.items()
+                            if len(kinds) == 1 and name in self.names and name != "k"}
+        self.expression_dimensions(mech)
         if self.errors:
             raise InputErrors(self.errors)
         return mech

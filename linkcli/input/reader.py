@@ -14,6 +14,7 @@ from linkcli.input.source import Document, path_text
 
 UNKNOWN = "unknown"
 NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*\Z")   # \Z: no trailing newline
+WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 
 class InputErrors(InputError):
@@ -50,6 +51,8 @@ class Reader:
         self.k_override = k
         self.names: dict[str, float] = {}
         self.k: int | None = None
+        #: name -> the unit kinds of the values written as a multiple of it (k: 2*ks)
+        self.uses: dict[str, set] = {}
 
     def error(self, path, detail: str, hint: str | None = None):
         self.errors.append(InputError(detail, file=self.doc.name, key=path_text(path) or None,
@@ -81,11 +84,22 @@ class Reader:
             number = expressions.evaluate(value, self.names)
         except ExpressionError as exc:
             raise self.error(path, exc.detail, exc.hint) from None
+        if kind is not None and isinstance(value, str):
+            self.note_use(value, kind)
         if kind == "angle":
             return units.angle_to_si(number)
         if kind is not None:
             number *= units.factor(kind)
         return number
+
+    def note_use(self, text: str, kind: str):
+        """Record that ``text``, a multiple of one name (``ks``, ``2*L``), is a value of unit
+        ``kind``: a parameter so written is in that unit (model.dimensions.param_unit)."""
+        words = [w for w in WORD.findall(text) if w in self.names]
+        if len(words) == 1:
+            used = expressions.scaled_name(text)
+            if used is not None:
+                self.uses.setdefault(used, set()).add(kind)
 
     def name(self, value, path, pool=None, what="point") -> str:
         if not isinstance(value, str) or not NAME.match(value):

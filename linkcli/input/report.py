@@ -9,6 +9,7 @@ from linkcli.model.mechanism import (FRAME, LIMITS, VIBRATION, AnswerKey, KeyEnt
                                       limit_refusal, split_rate)
 from linkcli.model.mechanism import Tolerance
 from linkcli.model.units import ANGLE, FORCE, FREQUENCY, LENGTH, TORQUE
+from linkcli.input.derived import EXPR
 
 SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration", "points")
 #: the kinds of a geometric quantity, each the YAML key that asks for it
@@ -127,6 +128,7 @@ class AnswersSection:
             if q.limit and not self.block(self.limit_of, q, quantities):
                 del quantities[name]
                 self.failed.add(name)
+        self.expression_names(quantities)
         return quantities
 
     def limit_quantity(self, name, value, path) -> Quantity:
@@ -227,6 +229,8 @@ class AnswersSection:
             return self.vibration_quantity(name, value, path, pool)
         if isinstance(value, dict) and any(k in value for k in LIMITS):
             return self.limit_quantity(name, value, path)
+        if isinstance(value, dict) and EXPR in value:
+            return self.expression_quantity(name, value, path)
         value = self.mapping(value, path, set(GEOMETRY) | {"component", "unit", "point",
                                                            "signed"})
         kinds = [k for k in GEOMETRY if k in value]
@@ -522,6 +526,9 @@ class AnswersSection:
         order = {"position": 0, "velocity": 1, "acceleration": 2, "statics": 0,
                  "vibration": 0}[section]
         base = split_rate(name)
+        if base[0] in quantities and quantities[base[0]].kind == EXPR:
+            self.rate_of(name, quantities[base[0]], base[1], path)
+            return True             # an expression: in the section its reader expects
         vibration = name in quantities and quantities[name].kind in VIBRATION
         if section == "vibration" or vibration:
             if not vibration or section != "vibration":
@@ -564,6 +571,11 @@ class AnswersSection:
         if order <= quantity.rates:
             return
         has = {0: "no rates", 1: f"one rate ({quantity.name}dot)"}[quantity.rates]
+        if quantity.kind == EXPR:
+            raise self.error(path, f"'{name}' is not defined: the expression {quantity.name} "
+                             f"has {has}, the rates that every name it reads has",
+                             hint=f"ask for '{quantity.name}' itself, or read names that have "
+                             "the rate (a load and a limit have none)")
         raise self.error(path, f"'{name}' is not a defined quantity rate: "
                          f"{_kind_text(quantity.kind)} has {has}",
                          hint={"speed": "the rate of a speed is the tangential acceleration; "

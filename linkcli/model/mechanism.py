@@ -199,10 +199,16 @@ class Quantity:
     signed: bool = False
     line: int | None = field(default=None, compare=False)
     span: tuple | None = None      # a limit's driver range (from, to), display units
+    #: an expression quantity's (kind 'expr', the text in ``a``): the Dimension of its unit
+    #: (model.units), and the rates it has (those every name it reads has)
+    dimension: object = None
+    derived: int | None = None
 
     @property
     def rates(self) -> int:
         """How many rates the quantity has: 2 (NAMEdot and NAMEddot), 1 or 0."""
+        if self.derived is not None:
+            return self.derived
         if self.kind in ("q", "x", "y", "angle", "length", "along", "normal_to", "relative",
                          "rotation", "between"):
             return 2
@@ -304,6 +310,10 @@ class Mechanism:
     quiz: Quiz = field(default_factory=Quiz)
     params: dict = field(default_factory=dict)    # the file's named numbers for this k
     elements: Elements | None = None   # springs, dampers, forcing: None when absent
+    #: the unit kind of each parameter written on its own as a value of one kind (k: ks)
+    param_kinds: dict = field(default_factory=dict)
+    #: what it was built from, to build it again with other parameters (input.document.Source)
+    source: object = None
 
     def __post_init__(self):
         if not self.coordinates:

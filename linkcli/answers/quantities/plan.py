@@ -56,6 +56,8 @@ def needed_orders(mech, names):
     """The highest order of rates (0, 1 or 2) solving ``names`` takes; a rate a quantity has
     not (the rate of an acceleration) is refused here, before anything is solved."""
     orders = {0}
+    from linkcli.answers.quantities.expressions import expand
+    names, _ = expand(mech, names)
     for name in names:
         base, order = split_rate(name)
         quantity = mech.quantities.get(base)
@@ -132,8 +134,11 @@ def plan_for(mech, names=None, method="closed", tol=None) -> "Plan":
     plans = _PLANS.setdefault(mech, {})
     plan = plans.get(key)
     if plan is None:
-        plan = plans[key] = Plan(mech, report_names(mech) if names is None else list(names),
-                                 method, tol)
+        names = report_names(mech) if names is None else list(names)
+        from linkcli.answers.quantities.expressions import Derived, expand
+        solve, exprs = expand(mech, names)
+        plan = plans[key] = Plan(mech, names, method, tol) if not exprs else \
+            Derived(names, plan_for(mech, solve, method, tol), exprs)
     return plan
 
 

@@ -60,7 +60,11 @@ def test_schema_states_the_loaders_tables():
     report = props["report"]["properties"]
     assert set(report) == set(parsing.SECTIONS) | {"decimals"}
     from linkcli.model.mechanism import VIBRATION
-    assert set(DEFS["vibrationQuantity"]["properties"]) == set(VIBRATION) | {"unit", "time"}
+    from linkcli.input.oscillation import OSCILLATION
+    assert set(DEFS["vibrationQuantity"]["properties"]) == \
+        set(VIBRATION) - set(OSCILLATION) | {"unit", "time", "part"}
+    assert set(DEFS["oscillationQuantity"]["properties"]) == \
+        set(OSCILLATION) | {"unit", "part", "monic", "peak"}
     assert set(DEFS["vibrationQuantity"]["properties"]["unit"]["enum"]) == set(units.FREQUENCY)
     reserved = props["params"]["anyOf"][1]["propertyNames"]["allOf"][1]["not"]["enum"]
     assert set(reserved) == set(expressions.CONSTANTS) | set(expressions.FUNCTIONS) | {"k"}

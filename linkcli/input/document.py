@@ -17,6 +17,7 @@ from linkcli.input.report import SECTIONS, AnswersSection
 from linkcli.input.bodies import BodiesSection
 from linkcli.input.contacts import ContactsSection
 from linkcli.input.derived import DerivedSection
+from linkcli.input.oscillation import OscillationSection
 from linkcli.input.dynamics import DynamicsReader
 from linkcli.input.elements import ElementsReader
 from linkcli.input.loads import LoadsSection
@@ -33,7 +34,7 @@ __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS
 
 
 class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSection,
-             DerivedSection):
+             DerivedSection, OscillationSection):
     """The whole document: units, params, frame and points, then each section."""
 
     def parse(self) -> Mechanism:
@@ -102,6 +103,7 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
         mech.param_kinds = {name: kinds.pop() for name, kinds in self.uses.items()
                             if len(kinds) == 1 and name in self.names and name != "k"}
         self.expression_dimensions(mech)
+        self.answer_units(mech)
         if self.errors:
             raise InputErrors(self.errors)
         return mech

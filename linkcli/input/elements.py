@@ -57,7 +57,7 @@ class ElementsReader:
         if data.get("excitation") is not None:
             self.block(self.excitation, data["excitation"], ("excitation",), out)
         if data.get("initial") is not None:
-            out.initial = self.block(self.initial, data["initial"], ("initial",)) or {}
+            out.initial = self.block(self.initial, data["initial"], ("initial",), out) or {}
         mode = data.get("equilibrium", "solve")
         if mode not in ("solve", "figure"):
             self.p.error(("equilibrium",), f"equilibrium is 'solve' or 'figure', got {mode!r}",
@@ -233,10 +233,14 @@ class ElementsReader:
         out.supports["road"] = el.Support("road", j, amplitude, self.phase(spec, path))
 
     # free response ---------------------------------------------------------------------
-    def initial(self, value, path) -> dict:
+    def initial(self, value, path, elements) -> dict:
         spec = self.p.mapping(value, path)
         out = {}
+        if "from" in spec:
+            elements.initial_from = self.initial_from(spec["from"], path + ("from",), elements)
         for key, item in spec.items():
+            if key == "from":
+                continue
             name, rate = (key[:-4], True) if isinstance(key, str) and key.endswith("_dot") \
                 else (key, False)
             j = self.coordinate(name, path + (key,))
@@ -246,3 +250,23 @@ class ElementsReader:
             x0, v0 = out.get(j, (0.0, 0.0))
             out[j] = (x0, number) if rate else (number, v0)
         return out
+
+    def initial_from(self, value, path, elements) -> tuple:
+        """``from:`` equilibrium (the default), figure, unstretched (the one spring) or
+        {unstretched: SPRING}: what the initial offsets are measured from."""
+        if value in ("equilibrium", "figure"):
+            return value, None
+        name = None
+        if isinstance(value, dict):
+            spec = self.p.mapping(value, path, {"unstretched"}, ("unstretched",))
+            name = self.p.name(spec["unstretched"], path + ("unstretched",),
+                               set(elements.springs), "spring")
+        elif value == "unstretched":
+            if len(elements.springs) != 1:
+                raise self.p.error(path, f"'unstretched' names no spring: the file has "
+                                   f"{len(elements.springs)}", hint="write {unstretched: NAME}")
+            name = next(iter(elements.springs))
+        else:
+            raise self.p.error(path, f"from is equilibrium, figure, unstretched or "
+                               f"{{unstretched: SPRING}}, got {value!r}")
+        return "unstretched", name

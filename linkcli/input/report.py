@@ -10,6 +10,7 @@ from linkcli.model.mechanism import (FRAME, LIMITS, VIBRATION, AnswerKey, KeyEnt
 from linkcli.model.mechanism import Tolerance
 from linkcli.model.units import ANGLE, FORCE, FREQUENCY, LENGTH, TORQUE
 from linkcli.input.derived import EXPR
+from linkcli.input.oscillation import OSCILLATION
 
 SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration", "points")
 #: the kinds of a geometric quantity, each the YAML key that asks for it
@@ -225,8 +226,10 @@ class AnswersSection:
         if name.endswith("dot"):
             raise self.error(path, "quantity names must not end in 'dot'",
                              hint="rates are named automatically: phi1 -> phi1dot, phi1ddot")
+        if isinstance(value, dict) and any(k in value for k in OSCILLATION):
+            return self.oscillation_quantity(name, value, path, pool)
         if isinstance(value, dict) and any(k in value for k in VIBRATION):
-            return self.vibration_quantity(name, value, path, pool)
+            return self.with_part(name, value, path, pool)
         if isinstance(value, dict) and any(k in value for k in LIMITS):
             return self.limit_quantity(name, value, path)
         if isinstance(value, dict) and EXPR in value:
@@ -422,7 +425,7 @@ class AnswersSection:
 
     def vibration_quantity(self, name, value, path, pool) -> Quantity:
         """A quantity of the vibration analysis (see docs/vibrations.md)."""
-        value = self.mapping(value, path, set(VIBRATION) | {"unit", "time"})
+        value = self.mapping(value, path, set(VIBRATION) - set(OSCILLATION) | {"unit", "time"})
         kinds = [k for k in VIBRATION if k in value]
         if len(kinds) != 1:
             raise self.error(path, "give exactly one of " + ", ".join(kinds))

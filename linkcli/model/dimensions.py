@@ -86,11 +86,44 @@ def element_dimension(mech, names) -> Dimension:
     return ENERGY_DIM if all(m.kind == "angle" for m in measures) else FORCE_DIM
 
 
+def free_dimensions(mech) -> list:
+    """The dimensions of the free coordinates of a vibration problem, in order."""
+    imposed = set(mech.elements.imposed) if mech.elements is not None else set()
+    return [base_dimension(c.base) for j, c in enumerate(mech.coordinates) if j not in imposed]
+
+
 def _vibration(mech, quantity) -> Dimension:
     """The answers of a vibration problem (docs/vibrations.md)."""
     kind = quantity.kind
-    if kind in ("natural_frequency", "damped_frequency", "forcing_frequency"):
+    if kind in ("natural_frequency", "damped_frequency", "forcing_frequency",
+                "peak_frequency"):
         return FREQUENCY_DIM
+    if kind in ("natural_period", "damped_period", "beat_period"):
+        return TIME_DIM
+    if kind == "frequency_ratio":
+        return NONE
+    if kind == "eigenvalue":
+        return TIME_DIM ** -2
+    if kind == "characteristic":
+        # det(K - omega^2 M): a product of one stiffness per free coordinate, and each
+        # omega^2 a mass over a stiffness (T^2); divided by the leading one when monic.
+        # Radians are 1 here (a product of N m/rad^2 shown in N m)
+        dims = free_dimensions(mech)
+        power = int(quantity.a)
+        if quantity.form == "monic":
+            return TIME_DIM ** (2 * (power - len(dims)))
+        det = NONE
+        for d in dims:
+            d = Dimension(d.mass, d.length, d.time)
+            det = det * ENERGY_DIM / (d * d)
+        return det * TIME_DIM ** (2 * power)
+    if kind == "receptance":
+        return coordinate_dimension(mech, quantity.a) * coordinate_dimension(mech, quantity.b) \
+            / ENERGY_DIM
+    if kind in ("peak_amplitude", "largest"):
+        if quantity.of == "spring":
+            return element_dimension(mech, (quantity.a,))
+        return LENGTH_DIM if quantity.of == "point" else coordinate_dimension(mech, quantity.a)
     if kind in ("damping_ratio", "transmissibility"):
         return NONE
     if kind == "mode_shape":

@@ -203,6 +203,9 @@ class Quantity:
     #: (model.units), and the rates it has (those every name it reads has)
     dimension: object = None
     derived: int | None = None
+    #: of a complex vibration answer, its 'real' or 'imaginary' part (None: its magnitude);
+    #: of the characteristic polynomial's coefficient, 'monic' (divided by the leading one)
+    form: str | None = None
 
     @property
     def rates(self) -> int:
@@ -238,7 +241,11 @@ REPORT_SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration
 VIBRATION = ("natural_frequency", "damped_frequency", "damping_ratio", "mode_shape",
              "mass_matrix", "stiffness_matrix", "damping_matrix", "equilibrium",
              "spring_force", "amplitude", "phase", "transmissibility", "force_amplitude",
-             "free_response", "forcing_frequency")
+             "free_response", "forcing_frequency",
+             # what vibration chapters print besides (input.oscillation)
+             "natural_period", "damped_period", "frequency_ratio", "eigenvalue",
+             "characteristic", "receptance", "peak_frequency", "peak_amplitude",
+             "beat_period", "largest")
 
 
 @dataclass(frozen=True)

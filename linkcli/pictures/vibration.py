@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from linkcli.answers.quantities.oscillation import initial_state
 from linkcli.answers.quantities.vibration import analyse
 from linkcli.errors import InputError, SolveError
 from linkcli.forces import vibration as vib
@@ -154,16 +155,14 @@ def free(mech, span: str, names, output: str, dpi: int = 100) -> None:
     _require_vibration(mech, "a time response")
     analysis = analyse(mech)
     lin = analysis.lin
-    initial = mech.elements.initial
-    if not initial:
+    if not mech.elements.initial and mech.elements.initial_from[0] == "equilibrium":
         raise InputError("a time response starts from 'initial:'", file=mech.file,
                          key="initial", hint="e.g. initial: {theta: 2, theta_dot: 0}")
     t = parse_sweep(span)
     if t[0] != 0 or t[-1] <= 0:
         raise InputError(f"times '{span}' must run from 0 to a positive end", key="--free",
                          hint="e.g. --free 0:5:2000 (seconds)")
-    x0 = np.array([initial.get(j, (0.0, 0.0))[0] for j in lin.free])
-    v0 = np.array([initial.get(j, (0.0, 0.0))[1] for j in lin.free])
+    x0, v0 = initial_state(analysis)
     linear = vib.free_response(lin, x0, v0, t)
     nonlinear = vib.simulate(lin, x0, v0, t)
     picked = _coordinates(mech, lin, names)

@@ -16,7 +16,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.answers.quantities import collect
+from linkcli.answers.quantities import collect, oscillation
+from linkcli.input.oscillation import OSCILLATION
 from linkcli.errors import InputError, SolveError
 from linkcli.forces import vibration as vib
 from linkcli.forces.lagrange import Lagrangian
@@ -103,7 +104,7 @@ def evaluate(mech, names, result):
             result.values[name] = value
             result.units[name] = unit
     result.analysis = analysis
-    result.cautions = road_lift_off(analysis)
+    result.cautions = road_lift_off(analysis) + analysis.cache.get("cautions", [])
     return result
 
 
@@ -176,6 +177,8 @@ def value_of(analysis: Analysis, quantity):
     mech = analysis.mech
     lin = analysis.lin
     kind = quantity.kind
+    if kind in OSCILLATION or quantity.form is not None:
+        return oscillation.value_of(analysis, quantity)
     if kind in ("natural_frequency", "damped_frequency", "forcing_frequency"):
         unit = quantity.unit or mech.units.names["frequency"]
         if kind == "natural_frequency":
@@ -207,11 +210,7 @@ def value_of(analysis: Analysis, quantity):
             "Nm" if spring.measure.kind == "angle" else "N"
     if kind == "free_response":
         j = _free_index(analysis, quantity.a)
-        x0 = np.zeros(len(lin.free))
-        v0 = np.zeros(len(lin.free))
-        for c, (dx, dv) in mech.elements.initial.items():
-            if c in lin.free:
-                x0[lin.free.index(c)], v0[lin.free.index(c)] = dx, dv
+        x0, v0 = oscillation.initial_state(analysis)
         x = vib.free_response(lin, x0, v0, [quantity.time])[0, j]
         unit, factor = _coordinate_unit(mech, lin.free[j])
         return float(x) / factor, unit
@@ -343,4 +342,4 @@ def explain_lines(mech) -> list:
         for k in range(len(d.zeta)):
             lines.append(f"  damped {k + 1}: zeta = {d.zeta[k]:.6g}, "
                          f"omega_d = {d.omega_d[k]:.6g} rad/s")
-    return lines
+    return lines + oscillation.explain_lines(analysis)

@@ -230,7 +230,8 @@ class ElementsReader:
                                "but excitation.frequency is given too",
                                hint="give one of them")
         out.frequency = omega
-        out.supports["road"] = el.Support("road", j, amplitude, self.phase(spec, path))
+        out.supports["road"] = el.Support("road", j, amplitude, self.phase(spec, path),
+                                          road=(wavelength, speed))
 
     # free response ---------------------------------------------------------------------
     def initial(self, value, path, elements) -> dict:

@@ -8,6 +8,9 @@ assembled from a reader per concern: bodies, driver and loads, report and keys; 
 """
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
+
 from linkcli.input import expressions
 from linkcli.errors import InputError
 from linkcli.model.mechanism import Body, Mechanism, Quiz, split_rate
@@ -176,7 +179,8 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                 self.error(("params", key), f"'{key}' cannot be a parameter name")
                 continue
             try:
-                self.names[key] = self.number(value, ("params", key))
+                self.names[key] = self.number(value, ("params", key)) \
+                    if key not in self.overrides else float(self.overrides[key])
             except _Skip:
                 continue
 
@@ -218,6 +222,42 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                        "actuator", hint="add it to a link or remove it")
 
 
-def build(doc: Document, k: int | None = None) -> Mechanism:
-    """The validated mechanism of ``doc`` for matricola digit ``k`` (None: the file's)."""
-    return Parser(doc, k).parse()
+@dataclass(frozen=True)
+class Source:
+    """What a mechanism was built from: the document, the digit asked (None: the file's) and
+    the parameters given other values than the file's (name, value) pairs."""
+
+    doc: Document
+    k: int | None = None
+    params: tuple = ()
+
+
+def build(doc: Document, k: int | None = None, params: dict | None = None) -> Mechanism:
+    """The validated mechanism of ``doc`` for matricola digit ``k`` (None: the file's), its
+    ``params`` given these values (numbers as the file writes them) instead of the file's."""
+    params = dict(params or {})
+    if params:
+        declared = doc.data.get("params") if isinstance(doc.data, dict) else None
+        declared = declared if isinstance(declared, dict) else {}
+        for name, value in params.items():
+            if name not in declared:
+                listed = ", ".join(sorted(map(str, declared))[:10]) or "none"
+                raise InputError(f"'{name}' is not a parameter of this file (params: {listed})",
+                                 file=doc.name, key="params", hint="a varied or unknown "
+                                 "value is one of the file's params")
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or \
+                    not math.isfinite(value):
+                raise InputError(f"parameter '{name}' must be a finite number, got {value!r}",
+                                 file=doc.name, key=f"params.{name}")
+    parser = Parser(doc, k)
+    parser.overrides = params
+    mech = parser.parse()
+    mech.source = Source(doc, k, tuple(sorted(params.items())))
+    return mech
+
+
+def rebuild(mech: Mechanism, params: dict) -> Mechanism:
+    """``mech`` built again from its document, its digit and these ``params`` (on top of the
+    ones it was built with)."""
+    source = mech.source
+    return build(source.doc, source.k, {**dict(source.params), **params})

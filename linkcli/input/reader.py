@@ -53,6 +53,8 @@ class Reader:
         self.k: int | None = None
         #: name -> the unit kinds of the values written as a multiple of it (k: 2*ks)
         self.uses: dict[str, set] = {}
+        #: parameters given other values than the file's (input.document.build)
+        self.overrides: dict = {}
 
     def error(self, path, detail: str, hint: str | None = None):
         self.errors.append(InputError(detail, file=self.doc.name, key=path_text(path) or None,

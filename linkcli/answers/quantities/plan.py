@@ -107,7 +107,8 @@ def require_driver(mech, what: str) -> None:
     if mech.elements is not None or len(mech.coordinates) > 1:
         raise InputError(f"{what} varies the driver, and this file declares coordinates "
                          "(a vibration problem) instead", file=mech.file,
-                         hint="use 'linkcli solve', or 'linkcli plot' with --frf, --modes or "
+                         hint="use 'linkcli solve', 'linkcli sweep --vary NAME=FROM:TO:STEPS' "
+                         "(a parameter), or 'linkcli plot' with --vary, --frf, --modes or "
                          "--free")
 
 

@@ -45,10 +45,19 @@ K_OPTION = click.option("--k", "k", type=int, default=None, callback=_digit,
                         help="Last digit of the matricola (0-9).")
 
 
-def _load(path, k):
-    """The validated model of ``path`` for digit ``k``."""
+def _load(path, k, designed=True):
+    """The validated model of ``path`` for digit ``k``; where the file asks a design question
+    (``find:``), built with its solution unless ``designed`` is False."""
     from linkcli.api import load
-    return load(path, k).model
+    model = load(path, k).model
+    if designed and model.design is not None:
+        from linkcli.answers.design import resolved
+        from linkcli.answers.sheet import evaluate
+        try:
+            model = resolved(model, evaluate)
+        except LinkcliError as exc:
+            raise exc.located(path)
+    return model
 
 
 def _style(text: str, **style) -> str:
@@ -277,7 +286,7 @@ def explain(file, k, pseudocode, output):
     else:
         from linkcli.answers.explain import explain as text
     _not_an_input(output, file)
-    _emit(text(_load(file, k)), output)
+    _emit(text(_load(file, k, designed=pseudocode)), output)
 
 
 @cli.command()
@@ -409,7 +418,7 @@ def plot(file, sweep, frf, modes, free, vary, names, k, output):
         raise InputError("give one of --sweep, --frf, --modes, --free, --vary", key="plot",
                          hint="--sweep FROM:TO:STEPS --y NAME for a mechanism with a driver")
     _not_an_input(output, file)
-    mech = _load(file, k)
+    mech = _load(file, k, designed=not vary)     # a design question: solved at each value
     if vary:
         from linkcli.pictures.plotting import plot_vary
         plot_vary(mech, vary, list(names), output)
@@ -619,7 +628,7 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
                              "parameter (--vary NAME=FROM:TO:STEPS)")
         from linkcli.answers import vary as vary_mod
         name, values = vary_mod.parse_vary(vary)
-        mech = _load(file, k)
+        mech = _load(file, k, designed=False)     # a design question: solved at each value
         sweep_mod.check_every(every)
         varied = vary_mod.vary(mech, name, values, chosen, method=method, tol=_tol(tol))
         writer = (lambda put: vary_mod.write(varied, form, decimals, put))

@@ -6,22 +6,39 @@ a vibration problem, declared with coordinates, at its static equilibrium
 """
 from __future__ import annotations
 
-from linkcli.answers import quantities
+import numpy as np
+
+from linkcli.answers import design, quantities
 from linkcli.answers.quantities import Result, expressions
 from linkcli.errors import InputError
 
 
 def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
              tol=None) -> Result:
-    """Every name of ``names`` (default: the report's) in its display unit; expression
-    quantities worked out from the answers they read (``quantities.expressions``)."""
+    """Every name of ``names`` (default: the report's) in its display unit; a design
+    question answered first (``design``: the file built with its unknowns' solution),
+    expression quantities worked out from the answers they read (``quantities.expressions``)."""
+    if design.unsolved(mech):
+        mech = design.resolved(mech, evaluate)
     names = list(names) if names is not None else quantities.report_names(mech)
     solve, exprs = expressions.expand(mech, names)
-    if not exprs:
-        return _evaluate(mech, q, qdot, qddot, names, method, tol)
-    result = _evaluate(mech, q, qdot, qddot, solve, method, tol)
-    expressions.complete(mech, result, names, exprs)
+    solved = [n for n in solve if _kind(mech, n) == "design"]
+    result = _evaluate(mech, q, qdot, qddot, [n for n in solve if n not in solved], method,
+                       tol)
+    for name in solved:         # a solved parameter: the value the file was built with
+        value, result.units[name] = design.answer(mech, name)
+        shape = np.shape(getattr(result.kinematics, "q", None)) if q is not None else ()
+        result.values[name] = np.full(shape, value) if shape else value
+    if exprs or solved:
+        expressions.complete(mech, result, names, exprs)
+    if mech.design is not None:     # the figure is drawn for the parameters' start values
+        result.cautions = [c for c in result.cautions if c.kind != "figure"]
     return result
+
+
+def _kind(mech, name):
+    quantity = mech.quantities.get(name)
+    return quantity.kind if quantity is not None else None
 
 
 def _evaluate(mech, q, qdot, qddot, names, method, tol) -> Result:

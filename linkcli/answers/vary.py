@@ -19,6 +19,7 @@ import numpy as np
 from linkcli.answers.quantities import report_names
 from linkcli.answers.sweep import Block, MAX_POSITIONS, check_names, listing
 from linkcli.errors import InputError, LinkcliError
+from linkcli.model.dimensions import param_unit_name
 
 MAX_VALUES = 10 ** 6
 SPEC = re.compile(r"^\s*([A-Za-z][A-Za-z0-9_]*)\s*=\s*([^:]+):([^:]+):([^:]+)\s*$")
@@ -85,12 +86,6 @@ class Varied:
     issues: list = field(default_factory=list)
 
 
-def parameter_unit(mech, name) -> str:
-    """The unit the file writes a parameter in, where it tells ('' where it does not)."""
-    kind = mech.param_kinds.get(name)
-    return mech.units.names[kind] if kind else ""
-
-
 def check_parameter(mech, name, key="--vary"):
     """Refuse a name that is not one of the file's params."""
     declared = mech.source.doc.data.get("params") if mech.source is not None else None
@@ -101,6 +96,10 @@ def check_parameter(mech, name, key="--vary"):
     if name not in declared:
         raise InputError(f"'{name}' is not a parameter of this file", key=key, file=mech.file,
                          hint="params: " + (listing(sorted(map(str, declared))) or "none"))
+    if mech.design is not None and name in mech.design.names:
+        raise InputError(f"'{name}' is an unknown of the file's design question: it is "
+                         "solved, not varied", key=key, file=mech.file,
+                         hint="vary another parameter: the design is solved at each value")
 
 
 def vary(mech, name, values, names=None, key="--vary", method="closed", tol=None) -> Varied:
@@ -116,7 +115,7 @@ def vary(mech, name, values, names=None, key="--vary", method="closed", tol=None
         raise InputError(f"{values.size} values is more than the limit of {MAX_POSITIONS}",
                          key=key)
     out = Varied(mech, name, values, np.zeros(values.size, bool), names,
-                 unit=parameter_unit(mech, name))
+                 unit=param_unit_name(mech, name))
     rows = {n: [] for n in names}
     first_error = None
     for i, value in enumerate(values):

@@ -20,6 +20,7 @@ from linkcli.input.report import SECTIONS, AnswersSection
 from linkcli.input.bodies import BodiesSection
 from linkcli.input.contacts import ContactsSection
 from linkcli.input.derived import DerivedSection
+from linkcli.input.find import FindSection
 from linkcli.input.oscillation import OscillationSection
 from linkcli.input.dynamics import DynamicsReader
 from linkcli.input.elements import ElementsReader
@@ -29,7 +30,7 @@ from linkcli.input.reader import NAME, UNKNOWN, InputErrors, Reader, _kind, _Ski
 TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points", "links",
             "actuators", "sliders", "driver", "coordinates", "loads", "quantities", "report",
             "keys", "dynamics", "springs", "dampers", "excitation", "initial", "equilibrium",
-            "rolling", "cords", "statement", "quiz"}
+            "rolling", "cords", "statement", "quiz", "find"}
 VIBRATION_KEYS = ("springs", "dampers", "excitation", "initial", "equilibrium")
 
 __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS", "UNKNOWN",
@@ -37,7 +38,7 @@ __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS
 
 
 class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSection,
-             DerivedSection, OscillationSection):
+             DerivedSection, OscillationSection, FindSection):
     """The whole document: units, params, frame and points, then each section."""
 
     def parse(self) -> Mechanism:
@@ -81,7 +82,10 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                           "springs": self.element_names(data, "springs"),
                           "dampers": self.element_names(data, "dampers")}
         quantities = self.block(self.quantities, data, pool, loads, driver) or {}
+        design = self.block(self.find, data, quantities)
         report = self.block(self.report, data, quantities, loads, pool) or {}
+        if design is not None:
+            report["design"] = design.names
         keys = self.block(self.keys, data, quantities, loads, pool, report) or ()
         self.check_points_used(pool, bodies, actuators, fixed)
         if self.errors:
@@ -94,7 +98,7 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                          as_drawn=self.k_override is None or self.k_override == data.get("k"),
                          statement=self.block(self.statement, data) or "",
                          quiz=self.block(self.quiz, data, report) or Quiz(),
-                         params={n: v for n, v in self.names.items()})
+                         params={n: v for n, v in self.names.items()}, design=design)
         if coordinates:
             mech.elements = ElementsReader(self, mech, _Skip).run(data)
             for load in loads.values():
@@ -107,6 +111,7 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                             if len(kinds) == 1 and name in self.names and name != "k"}
         self.expression_dimensions(mech)
         self.answer_units(mech)
+        self.find_units(mech)
         if self.errors:
             raise InputErrors(self.errors)
         return mech

@@ -529,6 +529,9 @@ class AnswersSection:
         order = {"position": 0, "velocity": 1, "acceleration": 2, "statics": 0,
                  "vibration": 0}[section]
         base = split_rate(name)
+        if base[0] in quantities and quantities[base[0]].kind == "design":
+            raise self.error(path, f"'{name}' is an unknown of 'find': it is listed in the "
+                             "report's Design section by itself", hint="remove it from here")
         if base[0] in quantities and quantities[base[0]].kind == EXPR:
             self.rate_of(name, quantities[base[0]], base[1], path)
             return True             # an expression: in the section its reader expects

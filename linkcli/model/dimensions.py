@@ -155,3 +155,10 @@ def param_unit(mech, name: str) -> tuple:
     if kind is None:
         return None, None, None
     return kind, DIMENSIONS[kind], mech.units.factor(kind)
+
+
+def param_unit_name(mech, name: str) -> str:
+    """The name of the unit the file writes parameter ``name`` in ('' where it does not
+    tell)."""
+    kind = mech.param_kinds.get(name)
+    return mech.units.names[kind] if kind else ""

@@ -238,7 +238,7 @@ LIMITS = ("maximum", "minimum", "at_maximum", "at_minimum", "stroke", "time_rati
           "stroke_time")
 
 #: the report's sections of named quantities, in the order of the answer sheet
-REPORT_SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration")
+REPORT_SECTIONS = ("design", "position", "velocity", "acceleration", "statics", "vibration")
 
 #: quantity kinds of the vibration analysis (each is also the YAML key that asks for it)
 VIBRATION = ("natural_frequency", "damped_frequency", "damping_ratio", "mode_shape",
@@ -324,6 +324,8 @@ class Mechanism:
     param_kinds: dict = field(default_factory=dict)
     #: what it was built from, to build it again with other parameters (input.document.Source)
     source: object = None
+    #: a design question (``find:``, model.design.Design), None when absent
+    design: object = None
 
     def __post_init__(self):
         if not self.coordinates:

@@ -348,6 +348,26 @@ def _token_candidates(token: str) -> list:
         return []
 
 
+#: units that count cycles (turns) where the tables count radians: in an expression a value
+#: in them is in cycles per second, as SI writes frequencies (1 Hz = 1/s, 1 rpm = 1/60 1/s)
+CYCLES = ("Hz", "rpm", "rev/s")
+
+
+def cycles(name: str) -> int:
+    """The power of cycles in the unit ``name`` (1 for Hz or rpm, -1 for 1/Hz, 0 for rad/s)."""
+    text = str(name).strip()
+    if text in CYCLES:
+        return 1
+    up, _, down = text.partition("/")
+    count = 0
+    for sign, part in ((1, up), (-1, down.strip("()"))):
+        for token in part.split():
+            base, _, power = token.partition("^")
+            if base in CYCLES:
+                count += sign * (int(power) if power.isdigit() else 1)
+    return count
+
+
 def parse_unit(name, expected=None):
     """(Dimension, SI factor) of a unit written with the tables' names, alone or as products
     and quotients of them, as :func:`show` writes composed units (``kg m``, ``mm/s^2``,

@@ -21,7 +21,7 @@ from linkcli.errors import ExpressionError, SolveError
 from linkcli.input.expressions import Expression, Rates
 from linkcli.model.dimensions import dimension, param_unit
 from linkcli.model.mechanism import split_rate
-from linkcli.model.units import parse_unit
+from linkcli.model.units import cycles, parse_unit
 
 EXPR = "expr"
 SUFFIX = ("", "dot", "ddot")
@@ -97,7 +97,14 @@ def unit_of(quantity) -> tuple[str, float]:
     """(unit name, SI factor) an expression is shown in: its ``unit``, or none."""
     if not quantity.unit:
         return "", 1.0
-    return quantity.unit, parse_unit(quantity.unit)[1]
+    return quantity.unit, expression_factor(quantity.unit)
+
+
+def expression_factor(unit: str, dim=None) -> float:
+    """The SI value of one ``unit`` in an expression: the tables' factor, a unit that counts
+    cycles (Hz, rpm) counting them as SI does (1 Hz = 1/s, not 2 pi rad/s), so that a
+    frequency f shown in Hz gives T = 1/f and an angular one w in rad/s T = 2*pi/w."""
+    return parse_unit(unit, dim)[1] / (2 * np.pi) ** cycles(unit)
 
 
 def rate_unit(unit: str, level: int) -> str:
@@ -121,7 +128,7 @@ def _bound(mech, result, own, used, order):
         return value if order == 0 or not isinstance(value, Rates) else \
             Rates(value.terms[:order + 1])
     if base in mech.quantities:
-        terms = [_si(mech, result, rate_name(used, i)) for i in range(order + 1)]
+        terms = [in_si(mech, result, rate_name(used, i)) for i in range(order + 1)]
         return terms[0] if order == 0 else Rates(terms)
     if used == "k":
         return float(mech.k)
@@ -129,14 +136,15 @@ def _bound(mech, result, own, used, order):
     return float(mech.params[used]) * (1.0 if factor is None else factor)
 
 
-def _si(mech, result, name):
+def in_si(mech, result, name):
     """An answer of ``result`` (display units) in SI."""
     value = np.asarray(result.values[name], dtype=float)
     unit = result.units.get(name, "")
-    parsed = parse_unit(unit, dimension(mech, name))
-    if parsed is None:          # pragma: no cover - every answer's unit is readable
+    dim = dimension(mech, name)
+    if parse_unit(unit, dim) is None:   # pragma: no cover - every answer's unit is readable
         raise SolveError(f"the unit '{unit}' of '{name}' cannot be read", file=mech.file)
-    return value * parsed[1] if value.ndim else float(value) * parsed[1]
+    factor = expression_factor(unit, dim)
+    return value * factor if value.ndim else float(value) * factor
 
 
 class Derived:

@@ -410,6 +410,10 @@ def value_of(mech, name, kin, loads, context=None):
     base_name, order = split_rate(name)
     quantity = mech.quantities[base_name]
     units = mech.units
+    if quantity.kind == "design":           # a solved parameter: the file's value
+        from linkcli.model.dimensions import param_unit_name
+        value = float(mech.params[base_name])
+        return value + 0 * np.asarray(kin.q, dtype=float), param_unit_name(mech, base_name)
     if quantity.kind in JOINT_FORCES:
         return force_value(quantity, kin, context or Context(mech, None, kin))
     if quantity.kind in TEXTBOOK:

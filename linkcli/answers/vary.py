@@ -116,9 +116,19 @@ def vary(mech, name, values, names=None, key="--vary", method="closed", tol=None
                          key=key)
     out = Varied(mech, name, values, np.zeros(values.size, bool), names,
                  unit=param_unit_name(mech, name))
-    rows = {n: [] for n in names}
+    rows = {n: np.full(values.size, np.nan) for n in names}
     first_error = None
+    from linkcli.answers.coefficients import sweep as at_once
+    fast = at_once(mech, name, values, names, evaluate) if method == "closed" else None
+    if fast is not None:        # the values the linear system answers, all at once
+        answers, done, units = fast
+        out.units.update(units)
+        for n in names:
+            rows[n][done] = answers[n][done]
+        out.solved |= done
     for i, value in enumerate(values):
+        if out.solved[i]:
+            continue
         try:
             variant = rebuild(mech, {name: float(value)})
             result = evaluate(variant, names=names) if variant.elements is not None else \
@@ -130,10 +140,10 @@ def vary(mech, name, values, names=None, key="--vary", method="closed", tol=None
         out.solved[i] = True
         out.units.update(result.units)
         for n in names:
-            rows[n].append(float(np.asarray(result.values[n], dtype=float)))
+            rows[n][i] = float(np.asarray(result.values[n], dtype=float))
     if not out.solved.any():
         raise first_error
-    out.values = {n: np.array(v) for n, v in rows.items()}
+    out.values = {n: v[out.solved] for n, v in rows.items()}
     return out
 
 

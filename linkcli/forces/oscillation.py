@@ -42,17 +42,18 @@ MOST_SAMPLES = 400_000
 
 def characteristic(M, K) -> np.ndarray:
     """Coefficients c_0 .. c_n of det(K - lambda M) = sum_i c_i lambda^i (exact expansion by
-    columns; n at most 12)."""
-    n = len(M)
+    columns; n at most 12); M and K may be stacks (..., n, n), c is then (..., n + 1)."""
+    M, K = np.asarray(M, dtype=float), np.asarray(K, dtype=float)
+    n = M.shape[-1]
     if n > 12:
         raise SolveError(f"the characteristic polynomial of {n} coordinates is not expanded "
                          "(at most 12)", hint="ask for the natural frequencies instead")
-    c = np.zeros(n + 1)
+    c = np.zeros(np.broadcast_shapes(M.shape, K.shape)[:-2] + (n + 1,))
     for size in range(n + 1):
         for columns in combinations(range(n), size):
-            mixed = np.array(K, dtype=float, copy=True)
-            mixed[:, list(columns)] = M[:, list(columns)]
-            c[size] += (-1) ** size * np.linalg.det(mixed)
+            mixed = np.array(np.broadcast_to(K, np.broadcast_shapes(M.shape, K.shape)))
+            mixed[..., :, list(columns)] = np.broadcast_to(M, mixed.shape)[..., :, list(columns)]
+            c[..., size] += (-1) ** size * np.linalg.det(mixed)
     return c
 
 

@@ -9,7 +9,7 @@ assembled from a reader per concern: bodies, driver and loads, report and keys; 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from linkcli.input import expressions
 from linkcli.errors import InputError
@@ -235,6 +235,8 @@ class Source:
     doc: Document
     k: int | None = None
     params: tuple = ()
+    #: path -> (text, unit kind) of every value the file writes as an expression
+    written: dict = field(default_factory=dict, compare=False)
 
 
 def build(doc: Document, k: int | None = None, params: dict | None = None) -> Mechanism:
@@ -257,7 +259,7 @@ def build(doc: Document, k: int | None = None, params: dict | None = None) -> Me
     parser = Parser(doc, k)
     parser.overrides = params
     mech = parser.parse()
-    mech.source = Source(doc, k, tuple(sorted(params.items())))
+    mech.source = Source(doc, k, tuple(sorted(params.items())), parser.written)
     return mech
 
 

@@ -55,6 +55,9 @@ class Reader:
         self.uses: dict[str, set] = {}
         #: parameters given other values than the file's (input.document.build)
         self.overrides: dict = {}
+        #: path -> (text, unit kind) of every value written as an expression: what depends
+        #: on the parameters (answers.coefficients evaluates them over arrays)
+        self.written: dict = {}
 
     def error(self, path, detail: str, hint: str | None = None):
         self.errors.append(InputError(detail, file=self.doc.name, key=path_text(path) or None,
@@ -86,8 +89,10 @@ class Reader:
             number = expressions.evaluate(value, self.names)
         except ExpressionError as exc:
             raise self.error(path, exc.detail, exc.hint) from None
-        if kind is not None and isinstance(value, str):
-            self.note_use(value, kind)
+        if isinstance(value, str):
+            self.written[tuple(path)] = (value, kind)
+            if kind is not None:
+                self.note_use(value, kind)
         if kind == "angle":
             return units.angle_to_si(number)
         if kind is not None:

@@ -13,6 +13,7 @@ import errno
 import os
 import re
 import signal
+import stat
 import sys
 import threading
 import warnings
@@ -174,20 +175,33 @@ def _emit(text: str, output):
                          hint="check the folder exists and is writable") from None
 
 
+def _same_file(output, path) -> bool:
+    """Whether writing ``output`` would write the input ``path``: the same inode (a symbolic
+    or hard link), else the same real path; '-' is standard input, when it is a file."""
+    if path == "-":
+        try:
+            held, target = os.fstat(sys.stdin.fileno()), os.stat(output)
+        except (AttributeError, OSError, ValueError):    # a pipe, a terminal, no output yet
+            return False
+        return stat.S_ISREG(held.st_mode) and \
+            (held.st_dev, held.st_ino) == (target.st_dev, target.st_ino)
+    try:
+        return os.path.samefile(output, path)
+    except (OSError, ValueError):
+        return os.path.realpath(output) == os.path.realpath(path)
+
+
 def _not_an_input(output, *inputs):
-    """Refuse ``-o`` naming one of the input files (also through a link): it would be
-    overwritten before, or instead of, being read."""
+    """Refuse ``-o`` naming one of the input files (also through a link, and standard input
+    read from that file): it would be overwritten before, or instead of, being read."""
     if output is None:
         return
     for path in inputs:
-        if path in (None, "-"):
+        if path is None:
             continue
-        try:
-            same = os.path.samefile(output, path)
-        except (OSError, ValueError):
-            same = os.path.realpath(output) == os.path.realpath(path)
-        if same:
-            raise InputError(f"the output file is the input file {path}", file=output,
+        if _same_file(output, path):
+            what = "the file read on standard input" if path == "-" else f"the input file {path}"
+            raise InputError(f"the output file is {what}", file=output,
                              key="-o", hint="give -o another name: writing it would "
                              "replace the mechanism")
 
@@ -841,6 +855,7 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, method, o
     import os
     from linkcli.answers.batch import parse_k
     from linkcli.input.source import load_file
+    _not_an_input(output, file)             # --force replaces an output, never the input
     if os.path.exists(output) and not force:
         raise InputError("the output file exists", file=output, key="-o",
                          hint="give --force to replace it, or another name")
@@ -857,9 +872,6 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, method, o
         if method != "closed":
             raise InputError("a worked solution follows the closed-form groups", key="--method",
                              hint="--method newton is for --to moodle")
-        from linkcli.exports import worked
-        from linkcli.input.document import build
-        mech = build(doc, ks[0] if ks else None)
-        items = worked.blocks(mech, lang, figure=not no_figure and target == "html")
-        text = worked.to_html(items, lang) if target == "html" else worked.to_markdown(items)
+        from linkcli.exports.worked import document
+        text = document(doc, ks[0] if ks else None, target, lang, figure=not no_figure)
     _emit(text.rstrip("\n"), output)

@@ -10,26 +10,35 @@ from linkcli.input.document import build
 
 
 def parse_k(text: str) -> list[int]:
-    """'0-9' -> [0..9]; '1,3,5' -> [1, 3, 5]; ranges and lists may be mixed."""
+    """'0-9' -> [0..9]; '1,3,5' -> [1, 3, 5]; ranges and lists may be mixed.  Each digit
+    is one row (one question), so a digit given twice is refused: the list holds at most
+    the ten digits, whatever its length."""
     ks: list[int] = []
     for part in str(text).split(","):
-        part = part.strip()
-        try:
-            if "-" in part:
-                lo, hi = (int(x) for x in part.split("-", 1))
-                ks += list(range(lo, hi + 1)) if lo <= hi else []
-                if lo > hi:
-                    raise ValueError
-            else:
-                ks.append(int(part))
-        except ValueError:
-            raise InputError(f"cannot read k list '{text}'", key="--k",
-                             hint="use a digit, a range such as 0-9, or a list such as 1,3,5") \
-                from None
-    bad = [k for k in ks if not 0 <= k <= 9]
+        lo, hi = _bounds(part.strip(), text)
+        for k in range(lo, hi + 1):
+            if k in ks:
+                raise InputError(f"the digit {k} is given twice in '{text}'", key="--k",
+                                 hint="each digit is one row or question: give it once")
+            ks.append(k)
+    return ks
+
+
+def _bounds(part: str, text: str) -> tuple[int, int]:
+    """The first and last digit of one item of a k list ('3' or '2-5'), each checked to
+    be a digit before any range is made."""
+    try:
+        lo, hi = (int(x) for x in part.split("-", 1)) if "-" in part else (int(part),) * 2
+        if lo > hi:
+            raise ValueError
+    except ValueError:
+        raise InputError(f"cannot read k list '{text}'", key="--k",
+                         hint="use a digit, a range such as 0-9, or a list such as 1,3,5") \
+            from None
+    bad = [k for k in (lo, hi) if not 0 <= k <= 9]
     if bad:
         raise InputError(f"k must be a digit 0-9, got {bad[0]}", key="--k")
-    return ks
+    return lo, hi
 
 
 def run(doc, ks: list[int]):

@@ -15,6 +15,7 @@ HEADINGS = {
            "acceleration": "Acceleration analysis", "statics": "Statics (virtual work)",
            "points": "Coordinates of notable points", "driver": "Driver",
            "dynamics": "Dynamics (virtual work with inertia and gravity)",
+           "dynamics_no_gravity": "Dynamics (virtual work with inertia)",
            "vibration": "Vibrations (linearised about the static equilibrium)"},
     "it": {"design": "Progetto (parametri ricavati)",
            "position": "Analisi Cinematica di POSIZIONE",
@@ -22,9 +23,18 @@ HEADINGS = {
            "acceleration": "Analisi Cinematica di ACCELERAZIONE",
            "statics": "Analisi STATICA",
            "points": "Coordinate di punti notevoli", "driver": "Movente",
-           "dynamics": "Analisi DINAMICA",
+           "dynamics": "Analisi DINAMICA", "dynamics_no_gravity": "Analisi DINAMICA",
            "vibration": "Analisi delle VIBRAZIONI (linearizzata nell'equilibrio statico)"},
 }
+
+
+def heading(mech, section: str, lang: str = "en") -> str:
+    """The heading of a report section: statics with masses is dynamics, said with gravity
+    only where the file has gravity."""
+    words = HEADINGS[lang]
+    if section != "statics" or mech.dynamics is None or mech.elements is not None:
+        return words[section]
+    return words["dynamics" if mech.dynamics.gravity else "dynamics_no_gravity"]
 
 
 def fmt(value, decimals: int) -> str:
@@ -41,6 +51,44 @@ def fmt(value, decimals: int) -> str:
     return text
 
 
+# a value smaller than this fraction of its scale is the rounding noise of a zero
+NOISE = 1e-12
+
+
+def without_noise(result):
+    """``result`` with every value that is rounding noise of a zero printed as 0.
+
+    A value's scale is the largest magnitude among the sheet's values in the same display
+    unit (a point's coordinates count among the lengths): a value under NOISE times that
+    scale is 0 (a coordinate of 3.7e-14 mm in a mechanism 1144 mm across, a spring force of
+    -5.6e-15 N beside a transmitted force of 607 N).  A value alone in its unit keeps what
+    it has; ``fmt`` still prints a value under a millionth of the last decimal as 0."""
+    import dataclasses
+    scales: dict = {}
+
+    def see(unit, value):
+        top = np.max(np.abs(value), initial=0.0, where=np.isfinite(value))
+        scales[unit] = max(scales.get(unit, 0.0), float(top))
+
+    values = {n: np.asarray(v, dtype=float) for n, v in result.values.items()}
+    points = {p: (np.asarray(x, dtype=float), np.asarray(y, dtype=float))
+              for p, (x, y) in result.points.items()}
+    for name, value in values.items():
+        see(result.units.get(name), value)
+    for p, (x, y) in points.items():
+        see(result.units.get(p), x)
+        see(result.units.get(p), y)
+
+    def clean(unit, value):
+        out = np.where(np.abs(value) < NOISE * scales[unit], 0.0, value) + 0.0   # no -0.0
+        return float(out) if out.ndim == 0 else out
+
+    return dataclasses.replace(
+        result, values={n: clean(result.units.get(n), v) for n, v in values.items()},
+        points={p: (clean(result.units.get(p), x), clean(result.units.get(p), y))
+                for p, (x, y) in points.items()})
+
+
 def _scalar(result, name):
     value = np.asarray(result.values[name])
     return float(value) if value.ndim == 0 else float(value.reshape(-1)[0])
@@ -52,16 +100,17 @@ def exam(result, decimals: int = 1, lang: str = "en") -> str:
     lines = [mech.title]
     if mech.k is not None:
         lines.append(f"k = {mech.k}")
+    shown = {n: fmt(_scalar(result, n), decimals) for n in result.values}
+    column = max([10] + [len(text) for text in shown.values()])   # one column for the sheet
     for section in REPORT_SECTIONS:
         names = mech.report.get(section) or []
         if not names:
             continue
-        dynamic = section == "statics" and mech.dynamics is not None
-        lines += ["", words["dynamics" if dynamic else section]]
+        lines += ["", heading(mech, section, lang)]
         width = max(len(n) for n in names)
         for name in names:
-            lines.append(f"  {name:<{width}} = {fmt(_scalar(result, name), decimals):>10} "
-                         f"{result.units[name]}")
+            lines.append(f"  {name:<{width}} = {shown[name]:>{column}} "
+                         f"{result.units[name]}".rstrip())
         if section == "position" and result.points:
             lines += ["", words["points"]]
             for p, (x, y) in result.points.items():
@@ -111,6 +160,7 @@ def csv_text(header, rows) -> str:
 
 
 def render(result, form: str, decimals: int = 1, lang: str = "en") -> str:
+    result = without_noise(result)
     if form == "exam":
         return exam(result, decimals, lang)
     if form == "table":

@@ -68,9 +68,9 @@ def validate_file(path: str, k: int | None = None) -> Validation:
     if errors:
         result.problems, result.exit_code = _lines(errors, digits), 2
         return result
-    from linkcli.kinematics.topology import analyse
+    from linkcli.kinematics.solvers import solver_for
     try:
-        topology = analyse(mech)
+        topology = solver_for(mech).topology
     except StructureError as exc:   # valid, but only the numerical method solves it
         result.summary = f"valid; {exc.detail}: solve it with --method newton"
         return result

@@ -53,11 +53,13 @@ from fractions import Fraction
 
 import numpy as np
 
-from linkcli.answers.formats import HEADINGS, fmt
+from linkcli.answers.formats import fmt
+from linkcli.answers.formats import heading as section_heading
 from linkcli.answers.quantities import angle_period, report_names
 from linkcli.answers.sheet import evaluate
 from linkcli.answers.statement import data_lines, describe, number
 from linkcli.errors import InputError, LinkcliError, SolveError
+from linkcli.exports.text import refuse_unfit, visible
 from linkcli.input.document import build
 from linkcli.model.mechanism import REPORT_SECTIONS
 
@@ -283,13 +285,11 @@ def question_html(mech, result, places, boxes, lang, figure_name) -> str:
         parts.append(f'<p><img src="{plugin_link(figure_name)}" alt="{text(words["figure"])}" '
                      'style="max-width: 100%"></p>')
     parts.append(instructions(mech, result, places, lang))
-    headings = HEADINGS[lang]
     for section in REPORT_SECTIONS:
         names = mech.report.get(section) or []
         if not names:
             continue
-        heading = headings["dynamics" if section == "statics" and mech.dynamics is not None
-                           and mech.elements is None else section]
+        heading = section_heading(mech, section, lang)
         rows = [f"<tr><td>{text(b.name)}</td><td>{text(describe(mech, b.name, lang))}</td>"
                 f"<td>{b.cloze()}</td><td>{text(result.units[b.name])}</td></tr>"
                 for b in boxes if b.name in names]
@@ -344,6 +344,7 @@ def export(doc, ks, decimals=None, tolerance=None, lang="it", figure=True,
     ``figure``: True for the exam's figure, False for none, or a function of the
     mechanism giving the PNG's bytes.  ``method``: 'closed' or 'newton' (a class-III
     group needs Newton)."""
+    refuse_unfit(doc)
     base = build(doc, None)
     if not report_names(base):
         raise InputError("the file has no report to ask", file=base.file, key="report",
@@ -379,8 +380,8 @@ def export(doc, ks, decimals=None, tolerance=None, lang="it", figure=True,
         ET.SubElement(q, "idnumber").text = f"{name}-k{mech.k}" if mech.k is not None else name
         ET.SubElement(q, "defaultgrade").text = str(sum(b.weight for b in boxes))
     ET.indent(quiz)
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(quiz, encoding="unicode") \
-        + "\n"
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + \
+        visible(ET.tostring(quiz, encoding="unicode")) + "\n"
 
 
 def _exam_picture(lang, method):

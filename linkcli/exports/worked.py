@@ -20,9 +20,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.answers.explain import explain
-from linkcli.answers.formats import HEADINGS, fmt
+from linkcli.answers.formats import fmt, heading
 from linkcli.answers.sheet import evaluate
 from linkcli.answers.statement import data_lines
+from linkcli.exports.text import fence, markdown, refuse_unfit, visible
+from linkcli.input.document import build
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import REPORT_SECTIONS
 
@@ -63,6 +65,14 @@ def _xy(z, f):
     return f"({z.real:.6g}, {z.imag:.6g})"
 
 
+def document(doc, k=None, target="html", lang="en", figure=True) -> str:
+    """The worked solution of the loaded document ``doc`` at digit ``k`` (None: the file's
+    own) as one HTML page (``target`` 'html', with the figure) or Markdown."""
+    refuse_unfit(doc)
+    items = blocks(build(doc, k), lang, figure=figure and target == "html")
+    return to_html(items, lang) if target == "html" else to_markdown(items)
+
+
 def blocks(mech, lang="en", figure=True) -> list:
     """The worked solution of ``mech`` (at its own digit and driver value) as blocks."""
     w = WORDS[lang]
@@ -76,15 +86,13 @@ def blocks(mech, lang="en", figure=True) -> list:
     if mech.elements is None:
         out += _kinematics(mech, w)
     out.append(Block("heading", w["results"]))
-    headings = HEADINGS[lang]
     decimals = mech.report.get("decimals", 1)
     for section in REPORT_SECTIONS:
         names = mech.report.get(section) or []
         if names:
             rows = [[n, fmt(np.ravel(result.values[n])[0], decimals), result.units[n]]
                     for n in names]
-            title = headings["dynamics" if section == "statics" and mech.dynamics is not None
-                             and mech.elements is None else section]
+            title = heading(mech, section, lang)
             out.append(Block("table", rows, [title, w["value"], w["unit"]]))
     if figure:
         from linkcli.exports.figure import figure_bytes
@@ -180,7 +188,8 @@ def _statics(mech, solver, kin, w):
 
 # --- renderers ---------------------------------------------------------------------------
 def to_html(items, lang="en") -> str:
-    esc = html.escape
+    def esc(text):
+        return html.escape(visible(text))
     body = []
     for b in items:
         if b.kind == "heading":
@@ -197,7 +206,7 @@ def to_html(items, lang="en") -> str:
             body.append(f'<table class="results"><thead><tr>{head}</tr></thead>'
                         f"<tbody>{rows}</tbody></table>")
         elif b.kind == "figure":
-            svg = b.content[b.content.find("<svg"):]
+            svg = visible(b.content[b.content.find("<svg"):])
             body.append(f'<div class="figure">{svg}</div>')
     title = esc(str(items[0].content)) if items else "linkcli"
     style = ("body{font-family:sans-serif;max-width:60em;margin:2em auto;padding:0 1em}"
@@ -215,12 +224,12 @@ def to_markdown(items) -> str:
     first = True
     for b in items:
         if b.kind == "heading":
-            out.append(("# " if first else "## ") + str(b.content).replace("\n", " "))
+            out.append(("# " if first else "## ") + _md(b.content))
             first = False
         elif b.kind == "text":
-            out.append(str(b.content))
+            out.append(markdown(b.content))
         elif b.kind == "lines":
-            out.append("```\n" + "\n".join(str(x) for x in b.content) + "\n```")
+            out.append(fence(str(x) for x in b.content))
         elif b.kind == "table":
             out.append("\n".join(["| " + " | ".join(_md(h) for h in b.header) + " |",
                                   "|" + " --- |" * len(b.header)] +
@@ -232,7 +241,5 @@ def to_markdown(items) -> str:
 
 
 def _md(value) -> str:
-    text = str(value)
-    for ch in "\\|*_`<>[]":
-        text = text.replace(ch, "\\" + ch)
-    return text
+    """One line of Markdown (a heading, a table cell) showing ``value`` as it is."""
+    return markdown(" ".join(str(value).splitlines()))

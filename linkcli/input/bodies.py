@@ -20,8 +20,6 @@ class BodiesSection:
     def link(self, name, spec, units, pool, bodies):
         path = ("links", name)
         self.name(name, path, what="link")
-        if name == FRAME:
-            raise self.error(path, "'frame' is reserved for the fixed body")
         spec = self.mapping(spec, path, {"points", "length", "shape", "local"}, ("points",))
         points = spec["points"]
         if not isinstance(points, list) or len(points) < 2:

@@ -25,7 +25,8 @@ from linkcli.input.oscillation import OscillationSection
 from linkcli.input.dynamics import DynamicsReader
 from linkcli.input.elements import ElementsReader
 from linkcli.input.loads import LoadsSection
-from linkcli.input.reader import NAME, UNKNOWN, InputErrors, Reader, _kind, _Skip
+from linkcli.input.reader import (NAME, UNKNOWN, InputErrors, Reader, _kind, _Skip,
+                                  reserved_parameter)
 
 TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points", "links",
             "actuators", "sliders", "driver", "coordinates", "loads", "quantities", "report",
@@ -99,14 +100,14 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                          statement=self.block(self.statement, data) or "",
                          quiz=self.block(self.quiz, data, report) or Quiz(),
                          params={n: v for n, v in self.names.items()}, design=design)
-        if coordinates:
+        if "dynamics" in data:
+            mech.dynamics = DynamicsReader(self, mech, _Skip).run(data["dynamics"])
+        if coordinates:       # after the dynamics: an element may name a rolling disc
             mech.elements = ElementsReader(self, mech, _Skip).run(data)
             for load in loads.values():
                 if load.kind == "driver":
                     self.error(("loads", load.name), "a 'driver' load needs a driver; with "
                                "coordinates, give forces, torques or axial loads")
-        if "dynamics" in data:
-            mech.dynamics = DynamicsReader(self, mech, _Skip).run(data["dynamics"])
         mech.param_kinds = {name: kinds.pop() for name, kinds in self.uses.items()
                             if len(kinds) == 1 and name in self.names and name != "k"}
         self.expression_dimensions(mech)
@@ -179,9 +180,11 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
         params = data.get("params") or {}
         self.mapping(params, ("params",))
         for key, value in params.items():
-            if not isinstance(key, str) or not NAME.match(key) or key in expressions.CONSTANTS \
-                    or key in expressions.FUNCTIONS or key == "k":
-                self.error(("params", key), f"'{key}' cannot be a parameter name")
+            reason = reserved_parameter(key) if isinstance(key, str) else None
+            if not isinstance(key, str) or not NAME.match(key) or reason:
+                self.error(("params", key), f"'{key}' cannot be a parameter name" +
+                           (f": {reason}" if reason else ""),
+                           hint="rename the parameter" if reason else None)
                 continue
             try:
                 self.names[key] = self.number(value, ("params", key)) \

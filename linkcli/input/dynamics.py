@@ -11,6 +11,10 @@ import math
 from ..model.dynamics import STANDARD_SIDE, Disc, Dynamics, MassBody, PinFriction
 from ..model.mechanism import FRAME
 
+# the words YAML 1.1 reads as booleans when unquoted, for a gravity written quoted
+YAML_BOOLEANS = {"off": False, "no": False, "false": False, "on": True, "yes": True,
+                 "true": True}
+
 
 class DynamicsReader:
     def __init__(self, parser, mech, skip):
@@ -87,7 +91,10 @@ class DynamicsReader:
             return []
 
     def gravity(self, value, path) -> complex:
-        """off/false/0: none; a number g (m/s^2, along -y); or {g, angle}."""
+        """off/false/0: none; a number g (m/s^2, along -y); or {g, angle}.  'off' quoted (as
+        YAML writers quote it) is off as unquoted, and so are the other booleans."""
+        if isinstance(value, str) and value.strip().lower() in YAML_BOOLEANS:
+            value = YAML_BOOLEANS[value.strip().lower()]
         if value is None or value is False:
             return 0j
         if value is True:

@@ -9,12 +9,26 @@ import re
 
 from linkcli.input import expressions
 from linkcli.errors import ExpressionError, InputError
+from linkcli.model.mechanism import FRAME
 from linkcli.model.units import Units
 from linkcli.input.source import Document, path_text
 
 UNKNOWN = "unknown"
 NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*\Z")   # \Z: no trailing newline
 WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+BODIES = ("link", "slider", "actuator", "disc")   # named bodies: never the fixed one's name
+
+
+def reserved_parameter(name: str) -> str | None:
+    """Why ``name`` cannot be a parameter (it means something in every expression), or
+    None."""
+    if name == "k":
+        return "'k' is the last digit of the matricola (set it with 'k:' or --k)"
+    if name in expressions.CONSTANTS:
+        return f"'{name}' is a constant of expressions ({name} = {expressions.CONSTANTS[name]:.6g})"
+    if name in expressions.FUNCTIONS:
+        return f"'{name}' is a function of expressions"
+    return None
 
 
 class InputErrors(InputError):
@@ -111,6 +125,9 @@ class Reader:
     def name(self, value, path, pool=None, what="point") -> str:
         if not isinstance(value, str) or not NAME.match(value):
             raise self.error(path, f"expected a {what} name, got {value!r}")
+        if pool is None and what in BODIES and value == FRAME:
+            raise self.error(path, f"'{FRAME}' is the name of the fixed body, so it cannot "
+                             f"name a {what}", hint=f"rename the {what}, e.g. '{what}1'")
         if pool is not None and value not in pool:
             names = sorted(pool)        # at most 10: the text stays linear in the file
             known = (", ".join(names[:10]) + (f" ... and {len(names) - 10} more"

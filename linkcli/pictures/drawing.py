@@ -243,3 +243,60 @@ def draw_masses(ax, scene, dyn, pos):
         start, end = gravity_arrow(ax.get_xlim(), ax.get_ylim(), scene.size, dyn.gravity)
         _arrow(ax, start, end, 9, arrowstyle="-|>", color="black", lw=1.5, shrinkA=0, shrinkB=0)
         _label(ax, start, "g", complex(6, -4), fontsize=10, zorder=9)
+
+
+# --- labels apart -----------------------------------------------------------------------------
+LABEL_GAP = 2.0         # pixels kept between two labels
+LABEL_STEP = 3.0        # pixels between the rings of positions tried
+LABEL_REACH = 40        # rings tried: a label moves at most LABEL_STEP * LABEL_REACH pixels
+
+
+def label_boxes(ax, renderer=None) -> list:
+    """(text artist, its bounding box in pixels) of every label drawn on ``ax``."""
+    renderer = renderer or ax.figure.canvas.get_renderer()
+    return [(t, t.get_window_extent(renderer)) for t in ax.texts
+            if t.get_visible() and t.get_text().strip()]
+
+
+def place_labels(ax) -> None:
+    """Move the labels of ``ax`` apart, in the order they were drawn (pivots' names first,
+    then the vectors', the angles', the loads'): each label that would overlap one placed
+    before it, or leave the axes, goes to the nearest free position on rings around where
+    it was drawn (8 to 64 directions a ring).  Call it once the axes' layout is final:
+    positions are in pixels."""
+    import math
+    renderer = ax.figure.canvas.get_renderer()
+    frame = ax.get_window_extent(renderer)
+    placed = []
+
+    def free(box):
+        return (box.x0 >= frame.x0 and box.x1 <= frame.x1 and box.y0 >= frame.y0 and
+                box.y1 <= frame.y1 and not any(box.padded(LABEL_GAP).overlaps(other)
+                                               for other in placed))
+
+    for text, box in label_boxes(ax, renderer):
+        if not free(box):
+            for ring in range(1, LABEL_REACH + 1):
+                r = ring * LABEL_STEP
+                count = min(64, 8 * ring)
+                moves = [(r * math.cos(2 * math.pi * i / count),
+                          r * math.sin(2 * math.pi * i / count)) for i in range(count)]
+                move = next((m for m in moves if free(box.translated(*m))), None)
+                if move is not None:
+                    _shift(ax, text, *move)
+                    box = box.translated(*move)
+                    break
+        placed.append(box)
+
+
+def _shift(ax, text, dx, dy):
+    """Move ``text`` by (dx, dy) pixels: its offset for an annotation in offset points,
+    else its position in data coordinates."""
+    from matplotlib.text import Annotation
+    if isinstance(text, Annotation) and text.anncoords == "offset points":
+        scale = 72.0 / ax.figure.dpi
+        x, y = text.xyann
+        text.xyann = (x + dx * scale, y + dy * scale)
+        return
+    x, y = ax.transData.transform(text.get_position())
+    text.set_position(ax.transData.inverted().transform((x + dx, y + dy)))

@@ -21,7 +21,7 @@ from linkcli.answers.sweep import listing
 from linkcli.answers.sheet import evaluate
 from linkcli.pictures.drawing import (COLORS, draw_elements, draw_loads, draw_masses,
                                       draw_mechanism, draw_polygon, figure)
-from linkcli.pictures.drawing import set_limits
+from linkcli.pictures.drawing import place_labels, set_limits
 from linkcli.errors import InputError
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import split_rate
@@ -33,20 +33,27 @@ MAX_FRAMES = 2000           # an animation's frames: a GIF of 2000 frames is ~3 
 
 
 # --- command-line requests -----------------------------------------------------------------
-def parse_sweep(text: str) -> np.ndarray:
-    """'FROM:TO:STEPS' -> STEPS + 1 driver values FROM + i (TO - FROM) / STEPS (display units)."""
+# what FROM:TO:STEPS means after each option, for its messages
+SPANS = {"--sweep": "e.g. 0:360:72: driver values in the file's units, STEPS intervals",
+         "--frf": "e.g. 0:60:600: forcing frequencies Omega in the file's units.frequency, "
+                  "STEPS intervals",
+         "--free": "e.g. 0:5:2000: times in seconds from 0, STEPS intervals"}
+
+
+def parse_sweep(text: str, key: str = "--sweep") -> np.ndarray:
+    """'FROM:TO:STEPS' -> STEPS + 1 values FROM + i (TO - FROM) / STEPS (display units), the
+    text of option ``key``."""
     parts = str(text).split(":")
     try:
         if len(parts) != 3:
             raise ValueError
         start, stop, steps = float(parts[0]), float(parts[1]), int(parts[2])
     except ValueError:
-        raise InputError(f"cannot read sweep '{text}'", key="--sweep",
-                         hint="write FROM:TO:STEPS, e.g. 0:360:72: driver values in the "
-                         "file's units, STEPS intervals") from None
+        raise InputError(f"cannot read {key[2:]} '{text}'", key=key,
+                         hint=f"write FROM:TO:STEPS, {SPANS[key]}") from None
     if not (math.isfinite(start) and math.isfinite(stop)) or not 1 <= steps <= MAX_STEPS:
-        raise InputError(f"sweep '{text}': need finite FROM, TO and 1 <= STEPS <= {MAX_STEPS}",
-                         key="--sweep")
+        raise InputError(f"{key[2:]} '{text}': need finite FROM, TO and 1 <= STEPS <= "
+                         f"{MAX_STEPS}", key=key)
     return start + np.arange(steps + 1) * ((stop - start) / steps)
 
 
@@ -227,7 +234,7 @@ def _tell(issues, notify=None):
             except (OSError, ValueError):
                 pass
     for issue in issues:
-        notify(issue.text())
+        notify(issue if isinstance(issue, str) else issue.text())
 
 
 def _panel(ax, mech, q, result, name, color):
@@ -255,8 +262,9 @@ def _continuous(mech, name, y, unit):
 
 
 def _wrap(text, width=80):
+    """The file's title on at most three lines, as text: a '$' is not mathtext's."""
     import textwrap
-    return "\n".join(textwrap.wrap(str(text), width)[:3])
+    return "\n".join(textwrap.wrap(str(text), width)[:3]).replace("$", r"\$")
 
 
 # --- draw and animate ------------------------------------------------------------------------
@@ -278,6 +286,11 @@ def _axes_text(ax, scene, title, fontsize):
 def draw(mech, output: str, dpi: int = 100) -> None:
     """The mechanism at the file's driver value, with its vector polygon and loads."""
     check_output(output, IMAGE_FORMATS)
+    _save_figure(drawn(mech, dpi), output)
+
+
+def drawn(mech, dpi: int = 100):
+    """The figure of ``draw``, its labels apart."""
     dyn = mech.dynamics
     kin = _positions(mech, figure_coordinates(mech))
     scene = Scene(mech, kin.pos)
@@ -297,7 +310,8 @@ def draw(mech, output: str, dpi: int = 100) -> None:
     _axes_text(ax, scene, _wrap(mech.title) + "\n" + subtitle, 10)
     ax.set_ylabel(f"y [{scene.l_unit}]")
     fig.tight_layout()
-    _save_figure(fig, output)
+    place_labels(ax)
+    return fig
 
 
 def figure_coordinates(mech):

@@ -214,13 +214,23 @@ def polygon_vectors(mech):
 
     The file's angle quantities when it has any (``phi3`` gives ``z3``, from its
     first point to its second); otherwise each link's vectors from its
-    alphabetically first vertex to the others, numbered in order.
+    alphabetically first vertex to the others, numbered in order, but in a
+    vibration problem a vector that an angle coordinate measures runs as the
+    coordinate does and is named after it (``theta: {angle: [O, B]}``: from O to B, 'θ = 270°' as ``solve``
+    prints it for a hanging rod, not 90°).
     """
     angles = [q for q in mech.quantities.values() if q.kind == "angle"]
     if angles:
         return _named_vectors(angles)
-    pairs = _link_pairs(mech)
-    return [(f"z{i + 1}", f"φ{i + 1}", a, b) for i, (a, b) in enumerate(pairs)]
+    measured = [c for c in mech.coordinates if c.kind == "angle" and c.b is not None
+                and mech.elements is not None]      # a vibration problem's answers
+    by_pair = {frozenset((c.a, c.b)): c for c in measured}
+    out = []
+    for i, (a, b) in enumerate(_link_pairs(mech, [(c.a, c.b) for c in measured])):
+        c = by_pair.get(frozenset((a, b)))
+        out.append((f"z{i + 1}", f"φ{i + 1}", a, b) if c is None else
+                   (f"z{i + 1}", greek(c.name), c.a, c.b))
+    return out
 
 
 def _named_vectors(angles):
@@ -231,12 +241,15 @@ def _named_vectors(angles):
     return [(f"z{i + 1}", greek(q.name), q.a, q.b) for i, q in enumerate(angles)]
 
 
-def _link_pairs(mech):
+def _link_pairs(mech, measured=()):
+    """Each link's (first vertex, other vertex): the first alphabetically, or the tail of
+    an angle coordinate that measures the link (``measured``: their (tail, head))."""
     pairs = []
     for body in mech.bodies.values():
         if body.kind == "link":
             pts = sorted(body.points)
-            pairs += [(pts[0], other) for other in pts[1:]]
+            base = next((a for a, b in measured if {a, b} <= set(pts)), pts[0])
+            pairs += [(base, other) for other in pts if other != base]
     pairs = list(dict.fromkeys(pairs))
     ends = [tuple(sorted((act.a, act.b))) for act in mech.actuators.values()]
     return pairs + [pair for pair in ends if pair not in pairs]

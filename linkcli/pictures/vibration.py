@@ -18,7 +18,13 @@ from linkcli.forces import vibration as vib
 from linkcli.model.units import ANGLE, FREQUENCY, LENGTH
 from linkcli.pictures.drawing import (COLORS, draw_elements, draw_mechanism, draw_outline,
                                       figure, set_limits)
-from linkcli.pictures.plotting import IMAGE_FORMATS, _save_figure, _wrap, check_output, parse_sweep
+from linkcli.pictures.plotting import (IMAGE_FORMATS, _save_figure, _tell, _wrap, check_output,
+                                       parse_sweep)
+
+# a free response integrates at most MAX_PERIODS periods of the highest natural frequency,
+# sampled at least SAMPLES_PER_PERIOD times each (fewer draw an aliased curve)
+MAX_PERIODS = 200
+SAMPLES_PER_PERIOD = 20
 from linkcli.pictures.scene import Scene
 
 
@@ -49,8 +55,12 @@ def _unit(mech, j):
     return unit, (ANGLE if base == "angle" else LENGTH)[unit]
 
 
-def frf(mech, span: str, names, output: str, dpi: int = 100) -> None:
-    """Amplitude and phase of coordinates ``names`` over the Omega values of ``span``."""
+def frf(mech, span: str, names, output: str, dpi: int = 100, notify=None) -> list:
+    """Amplitude and phase of coordinates ``names`` over the Omega values of ``span``.
+
+    An Omega where the undamped system is at resonance (the dynamic matrix singular) is a
+    break in the curves, and is named to ``notify`` (default: standard error); returns
+    those messages."""
     check_output(output, IMAGE_FORMATS)
     _require_vibration(mech, "a frequency response")
     analysis = analyse(mech)
@@ -59,12 +69,21 @@ def frf(mech, span: str, names, output: str, dpi: int = 100) -> None:
         raise InputError("a frequency response needs an excitation", file=mech.file,
                          key="excitation", hint="give harmonic forces or a support motion")
     f_unit = mech.units.names["frequency"]
-    omega = parse_sweep(span) * FREQUENCY[f_unit]
+    shown = parse_sweep(span, key="--frf")
+    if shown.min() < 0:
+        raise InputError(f"frf '{span}': a forcing frequency cannot be negative, got "
+                         f"{shown.min():g} {f_unit}", key="--frf",
+                         hint="Omega runs from 0 up, e.g. --frf 0:60:600")
+    omega = shown * FREQUENCY[f_unit]
     picked = _coordinates(mech, lin, names)
     D, singular = vib.dynamic_matrix(lin, omega)
-    regular = ~singular                          # undamped resonances are left out
-    X = np.linalg.solve(D[regular], lin.load(omega[regular])[..., None])[..., 0]
-    x_axis = omega[regular] / FREQUENCY[f_unit]
+    regular = ~singular              # an undamped resonance: a break in the curve, named
+    X = np.full((omega.size, len(lin.free)), np.nan, dtype=complex)
+    X[regular] = np.linalg.solve(D[regular], lin.load(omega[regular])[..., None])[..., 0]
+    x_axis = shown
+    said = [f"{mech.file}: warning: Omega = {w:.6g} {f_unit} is an undamped resonance: the amplitude is unbounded "
+            "there, a break in the curves" for w in shown[singular]]
+    _tell(said, notify)
     fig = figure(8.0, 6.4, dpi)
     amp_ax, phase_ax = fig.subplots(2, 1, sharex=True)
     for i, color in zip(picked, COLORS * len(picked)):
@@ -73,8 +92,7 @@ def frf(mech, span: str, names, output: str, dpi: int = 100) -> None:
         name = mech.coordinates[j].name
         amp_ax.semilogy(x_axis, np.abs(X[:, i]) / factor, color=color, lw=1.6,
                         label=f"|{name}| [{unit}]")
-        phase_ax.plot(x_axis, np.degrees(np.unwrap(np.angle(X[:, i]))), color=color, lw=1.4,
-                      label=name)
+        phase_ax.plot(x_axis, _phase(X[:, i]), color=color, lw=1.4, label=name)
     try:
         natural = analysis.modes().omega / FREQUENCY[f_unit]
     except SolveError:
@@ -94,6 +112,16 @@ def frf(mech, span: str, names, output: str, dpi: int = 100) -> None:
     amp_ax.set_title(_wrap(mech.title))
     fig.tight_layout()
     _save_figure(fig, output)
+    return said
+
+
+def _phase(x):
+    """The phase of ``x`` in degrees, unwrapped along each stretch between breaks (NaN)."""
+    out = np.full(x.shape, np.nan)
+    rows = np.nonzero(np.isfinite(x))[0]
+    for part in np.split(rows, np.nonzero(np.diff(rows) != 1)[0] + 1):
+        out[part] = np.degrees(np.unwrap(np.angle(x[part])))
+    return out
 
 
 def _positions(lag, q):
@@ -158,10 +186,7 @@ def free(mech, span: str, names, output: str, dpi: int = 100) -> None:
     if not mech.elements.initial and mech.elements.initial_from[0] == "equilibrium":
         raise InputError("a time response starts from 'initial:'", file=mech.file,
                          key="initial", hint="e.g. initial: {theta: 2, theta_dot: 0}")
-    t = parse_sweep(span)
-    if t[0] != 0 or t[-1] <= 0:
-        raise InputError(f"times '{span}' must run from 0 to a positive end", key="--free",
-                         hint="e.g. --free 0:5:2000 (seconds)")
+    t = _times(lin, span)
     x0, v0 = initial_state(analysis)
     linear = vib.free_response(lin, x0, v0, t)
     nonlinear = vib.simulate(lin, x0, v0, t)
@@ -180,3 +205,33 @@ def free(mech, span: str, names, output: str, dpi: int = 100) -> None:
     axes[0].set_title(_wrap(mech.title))
     fig.tight_layout()
     _save_figure(fig, output)
+
+
+def _times(lin, span):
+    """The times of ``--free 0:T:STEPS`` (s), refused where T holds more than MAX_PERIODS
+    periods of the highest natural frequency omega_max = max sqrt(|eig(K, M)|) (its cost
+    grows with them), or STEPS samples fewer than SAMPLES_PER_PERIOD per period."""
+    from scipy.linalg import eigvals
+    t = parse_sweep(span, key="--free")
+    if t[0] != 0 or t[-1] <= 0:
+        raise InputError(f"times '{span}' must run from 0 to a positive end", key="--free",
+                         hint="e.g. --free 0:5:2000 (seconds)")
+    highest = float(np.sqrt(np.max(np.abs(eigvals(lin.K, lin.M)))))
+    if not highest > 0:
+        return t
+    period = 2 * np.pi / highest
+    periods = t[-1] / period
+    where = (f"the highest natural frequency, omega = {highest:.4g} rad/s, has the period "
+             f"{period:.4g} s")
+    if periods > MAX_PERIODS:
+        raise InputError(f"free '{span}': {periods:.4g} periods is more than the limit of "
+                         f"{MAX_PERIODS} ({where})", key="--free",
+                         hint=f"end the time at {MAX_PERIODS * period:.4g} s or before")
+    steps = t.size - 1
+    if steps < SAMPLES_PER_PERIOD * periods:
+        need = int(np.ceil(SAMPLES_PER_PERIOD * periods))
+        raise InputError(f"free '{span}': {steps / periods:.4g} samples per period would draw "
+                         f"an aliased curve ({where})", key="--free",
+                         hint=f"use at least {need} STEPS, {SAMPLES_PER_PERIOD} a period: "
+                         f"--free 0:{span.split(':')[1]}:{need}")
+    return t

@@ -276,7 +276,8 @@ def unstretched(analysis, name) -> np.ndarray:
     q = lin.eq.q.copy()
     j = lin.free[0]
     for _ in range(50):
-        s = lag.measure(lag.jet(q, second=False), spring.measure)
+        jt = lag.jet(q, second=False)
+        s = lag.measure(jt, spring.measure, lag.rotations(q, jt))
         rate = float(s.grad[j])
         if rate == 0:
             break

@@ -104,7 +104,8 @@ def evaluate(mech, names, result):
             result.values[name] = value
             result.units[name] = unit
     result.analysis = analysis
-    result.cautions = road_lift_off(analysis) + analysis.cache.get("cautions", [])
+    result.cautions = list(analysis.lin.eq.cautions) + road_lift_off(analysis) + \
+        analysis.cache.get("cautions", [])
     return result
 
 

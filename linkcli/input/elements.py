@@ -73,8 +73,9 @@ class ElementsReader:
 
     def section(self, data, key):
         value = data.get(key)
-        if value is None:
-            return []
+        if value is None or (not value and not isinstance(value, dict)):
+            return []               # an empty section: nothing, [], 0, false or ''
+
         try:
             return list(self.p.mapping(value, (key,)).items())
         except self.skip:
@@ -258,21 +259,25 @@ class ElementsReader:
         return out
 
     def initial_from(self, value, path, elements) -> tuple:
-        """``from:`` equilibrium (the default), figure, unstretched (the one spring) or
-        {unstretched: SPRING}: what the initial offsets are measured from."""
+        """``from:`` equilibrium (the default), figure, unstretched (the one spring),
+        {unstretched: SPRING} or {unstretched: [SPRINGS]}: what the initial offsets are
+        measured from."""
         if value in ("equilibrium", "figure"):
             return value, None
-        name = None
         if isinstance(value, dict):
             spec = self.p.mapping(value, path, {"unstretched"}, ("unstretched",))
-            name = self.p.name(spec["unstretched"], path + ("unstretched",),
-                               set(elements.springs), "spring")
+            given = spec["unstretched"]
+            items = given if isinstance(given, list) else [given]
+            names = tuple(self.p.name(n, path + ("unstretched",) + ((i,) if isinstance(
+                given, list) else ()), set(elements.springs), "spring")
+                for i, n in enumerate(items))
         elif value == "unstretched":
             if len(elements.springs) != 1:
                 raise self.p.error(path, f"'unstretched' names no spring: the file has "
-                                   f"{len(elements.springs)}", hint="write {unstretched: NAME}")
-            name = next(iter(elements.springs))
+                                   f"{len(elements.springs)}",
+                                   hint="write {unstretched: NAME} or {unstretched: [NAMES]}")
+            names = tuple(elements.springs)
         else:
             raise self.p.error(path, f"from is equilibrium, figure, unstretched or "
                                f"{{unstretched: SPRING}}, got {value!r}")
-        return "unstretched", name
+        return "unstretched", names

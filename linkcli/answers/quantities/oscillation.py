@@ -252,41 +252,49 @@ def initial_state(analysis) -> tuple[np.ndarray, np.ndarray]:
     for c, (dx, dv) in elements.initial.items():
         if c in lin.free:
             x0[lin.free.index(c)], v0[lin.free.index(c)] = dx, dv
-    start, spring = elements.initial_from
+    start, springs = elements.initial_from
     if start == "figure":
         x0 += (lin.lag.figure - lin.eq.q)[lin.free]
     elif start == "unstretched":
-        x0 += unstretched(analysis, spring) - lin.eq.q[lin.free]
+        x0 += unstretched(analysis, springs) - lin.eq.q[lin.free]
     return x0, v0
 
 
-def unstretched(analysis, name) -> np.ndarray:
-    """The free coordinates (SI) where the spring ``name`` has its free measure s0, found by
-    Newton's method from the equilibrium (one free coordinate)."""
+def unstretched(analysis, names) -> np.ndarray:
+    """The free coordinates (SI) where the springs ``names`` have their free measures s0:
+    Newton's method from the equilibrium on the coordinates they move (as many as the
+    springs), the others left at the equilibrium."""
     lin = analysis.lin
     lag = lin.lag
     mech = analysis.mech
-    if len(lin.free) != 1:
-        raise InputError("'initial: from: unstretched' is for one free coordinate: with "
-                         f"{len(lin.free)}, the position where a spring is unstretched is "
-                         "not one", file=mech.file, key="initial.from",
-                         hint="give the initial offsets from the equilibrium or the figure")
-    spring = mech.elements.springs[name]
-    s0 = lag.free[name]
+    springs = [mech.elements.springs[n] for n in names]
     q = lin.eq.q.copy()
-    j = lin.free[0]
+    grads = np.array([np.asarray(lin.eq.terms.measures[n].grad, dtype=float) for n in names])
+    moved = [j for j in lin.free if np.any(grads[:, j] != 0)]
+    if len(moved) != len(names):
+        listed = ", ".join(mech.coordinates[j].name for j in moved) or "none"
+        raise InputError(f"the position where {', '.join(names)} {'is' if len(names) == 1 else 'are'}"
+                         f" unstretched is not one: {len(names)} spring"
+                         f"{'s' if len(names) != 1 else ''} and {len(moved)} free coordinate"
+                         f"{'s' if len(moved) != 1 else ''} they move ({listed})",
+                         file=mech.file, key="initial.from", hint="name one spring per "
+                         "coordinate, or give the initial offsets from the equilibrium or the "
+                         "figure")
     for _ in range(50):
         jt = lag.jet(q, second=False)
-        s = lag.measure(jt, spring.measure, lag.rotations(q, jt))
-        rate = float(s.grad[j])
-        if rate == 0:
+        rotations = lag.rotations(q, jt)
+        measures = [lag.measure(jt, s.measure, rotations) for s in springs]
+        miss = np.array([float(m.value) - lag.free[n] for m, n in zip(measures, names)])
+        rates = np.array([[float(m.grad[j]) for j in moved] for m in measures])
+        try:
+            change = np.linalg.solve(rates, miss)
+        except np.linalg.LinAlgError:
             break
-        change = (float(s.value) - s0) / rate
-        q[j] -= change
-        if abs(change) <= 1e-14 * (1 + abs(q[j])):
+        q[moved] -= change
+        if np.all(np.abs(change) <= 1e-14 * (1 + np.abs(q[moved]))):
             return q[lin.free]
-    raise SolveError(f"no position of {mech.coordinates[j].name} near the equilibrium leaves "
-                     f"spring {name} at its free measure", file=mech.file, key="initial.from",
+    raise SolveError(f"no position near the equilibrium leaves {', '.join(names)} at "
+                     "the free measure", file=mech.file, key="initial.from",
                      hint="give the initial offsets from the equilibrium or the figure")
 
 

@@ -44,6 +44,28 @@ def _digit(ctx, param, value):
 
 K_OPTION = click.option("--k", "k", type=int, default=None, callback=_digit,
                         help="Last digit of the matricola (0-9).")
+SYMBOLIC_OPTION = click.option(
+    "--symbolic", is_flag=True, help="Also write the formulas: a vibration problem's T, V, D, "
+    "equations, equilibrium, stability, M, K, R, F and characteristic equation in its "
+    "parameters; a linkage's closure equations and rate systems.")
+NUMBERS_OPTION = click.option("--numbers", default=None, metavar="NAMES",
+                              help="With --symbolic: the parameters (and g) given their "
+                              "numbers, e.g. --numbers M,L.")
+
+
+def _symbolic_load(file, k, symbolic, numbers, designed=True):
+    """(model, formulas' source) of ``file``: the document is read once when the formulas
+    are asked for (standard input cannot be read twice); a design question answered unless
+    ``designed`` is False."""
+    if numbers is not None and not symbolic:
+        raise InputError("--numbers goes with --symbolic", key="--numbers",
+                         hint="add --symbolic, or drop --numbers")
+    if not symbolic:
+        return _load(file, k, designed), None
+    from linkcli.input.document import build
+    from linkcli.input.source import load_file
+    doc = load_file(file)
+    return build(doc, k), doc
 
 
 def _load(path, k, designed=True):
@@ -256,7 +278,9 @@ def cli(ctx, quiet, traceback):
               help="Newton's tolerance, relative to the mechanism's size [default: 1e-12].")
 @click.option("--reactions", is_flag=True,
               help="Also print the force in every joint (Newton-Euler, with the masses).")
-def solve(file, k, form, decimals, lang, output, method, tol, reactions):
+@SYMBOLIC_OPTION
+@NUMBERS_OPTION
+def solve(file, k, form, decimals, lang, output, method, tol, reactions, symbolic, numbers):
     """Solve FILE and print the exam's results table.
 
     \b
@@ -267,7 +291,11 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions):
     """
     from linkcli.answers.formats import render
     _not_an_input(output, file)
-    mech = _load(file, k)
+    if symbolic and form == "csv":
+        raise InputError("--symbolic writes formulas in the exam, table or json format, not "
+                         "csv", key="--format", hint="give --format json for machine-readable "
+                         "formulas")
+    mech, doc = _symbolic_load(file, k, symbolic, numbers)
     decimals = mech.report.get("decimals", 1) if decimals is None else decimals
     from linkcli.answers.sheet import evaluate
     tol = _tol(tol)
@@ -276,6 +304,9 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions):
     if reactions:   # the joint forces at the positions of the same method
         from linkcli.answers.reaction_table import append_report
         text = append_report(text, mech, form, decimals, method=method, tol=tol)
+    if doc is not None:
+        from linkcli.answers.symbolic import append
+        text = append(text, form, doc, k, numbers, lang)
     _emit(text, output)
     for caution in result.cautions:       # after the answers: what the reader should check
         _echo(f"linkcli: {caution}", err=True)
@@ -287,7 +318,9 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions):
 @click.option("--pseudocode", is_flag=True,
               help="Print the solving order as pseudo-MATLAB calls of the dyad functions.")
 @click.option("-o", "--output", default=None, help="Write to this file instead of stdout.")
-def explain(file, k, pseudocode, output):
+@SYMBOLIC_OPTION
+@NUMBERS_OPTION
+def explain(file, k, pseudocode, output, symbolic, numbers):
     """Print Grübler's count, the Assur decomposition and the solving order.
 
     \b
@@ -300,7 +333,12 @@ def explain(file, k, pseudocode, output):
     else:
         from linkcli.answers.explain import explain as text
     _not_an_input(output, file)
-    _emit(text(_load(file, k, designed=pseudocode)), output)
+    mech, doc = _symbolic_load(file, k, symbolic, numbers, designed=pseudocode)
+    out = text(mech)
+    if doc is not None:
+        from linkcli.answers.symbolic import append
+        out = append(out, "exam", doc, k, numbers)
+    _emit(out, output)
 
 
 @cli.command()
@@ -843,7 +881,10 @@ def entry():  # pragma: no cover - console script
               "class-III group).")
 @click.option("-o", "--output", required=True, help="File to write.")
 @click.option("--force", is_flag=True, help="Replace the output file if it exists.")
-def export(file, target, k_text, lang, decimals, tolerance, no_figure, method, output, force):
+@SYMBOLIC_OPTION
+@NUMBERS_OPTION
+def export(file, target, k_text, lang, decimals, tolerance, no_figure, method, output, force,
+           symbolic, numbers):
     """Export FILE for a course: a Moodle quiz with every digit's variant, or a worked
     solution to hand out.
 
@@ -861,6 +902,12 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, method, o
                          hint="give --force to replace it, or another name")
     doc = load_file(file)
     ks = parse_k(k_text) if k_text is not None else None
+    if (symbolic or numbers is not None) and target == "moodle":
+        raise InputError("--symbolic goes with a worked solution (--to html or markdown)",
+                         key="--symbolic", hint="drop --symbolic for a Moodle export")
+    if numbers is not None and not symbolic:
+        raise InputError("--numbers goes with --symbolic", key="--numbers",
+                         hint="add --symbolic, or drop --numbers")
     if target == "moodle":
         from linkcli.exports.moodle import export as make
         text = make(doc, ks, decimals=decimals, tolerance=tolerance, lang=lang,
@@ -873,5 +920,10 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, method, o
             raise InputError("a worked solution follows the closed-form groups", key="--method",
                              hint="--method newton is for --to moodle")
         from linkcli.exports.worked import document
-        text = document(doc, ks[0] if ks else None, target, lang, figure=not no_figure)
+        k = ks[0] if ks else None
+        formulas = None
+        if symbolic:
+            from linkcli.answers.symbolic import formulas as symbolic_formulas, parse_numbers
+            formulas = symbolic_formulas(doc, k, parse_numbers(numbers))
+        text = document(doc, k, target, lang, figure=not no_figure, formulas=formulas)
     _emit(text.rstrip("\n"), output)

@@ -227,7 +227,7 @@ def _jun20_variant(speed, damped):
     text, count = re.subn(r"(?m)^  V: 5 .*$", f"  V: {speed!r}", text)
     assert count == 1
     if not damped:
-        for old, new in (("dampers:\n  r: {between: [B, P], c: rt}\n", ""),
+        for old, new in (("dampers:\n  r: {between: [B, P], c: r}\n", ""),
                          ("Ft: {force_amplitude: [k, r]}", "Ft: {force_amplitude: [k]}")):
             assert old in text
             text = text.replace(old, new)

@@ -65,11 +65,14 @@ def _xy(z, f):
     return f"({z.real:.6g}, {z.imag:.6g})"
 
 
-def document(doc, k=None, target="html", lang="en", figure=True) -> str:
+def document(doc, k=None, target="html", lang="en", figure=True, formulas=None) -> str:
     """The worked solution of the loaded document ``doc`` at digit ``k`` (None: the file's
-    own) as one HTML page (``target`` 'html', with the figure) or Markdown."""
+    own) as one HTML page (``target`` 'html', with the figure) or Markdown; ``formulas``
+    (``answers.symbolic.formulas``) adds the answers in symbols."""
     refuse_unfit(doc)
     items = blocks(build(doc, k), lang, figure=figure and target == "html")
+    if formulas is not None:
+        items = with_formulas(items, formulas, lang)
     return to_html(items, lang) if target == "html" else to_markdown(items)
 
 
@@ -186,6 +189,68 @@ def _statics(mech, solver, kin, w):
             Block("table", rows, [w["load"], w["value"], w["coefficient"]])]
 
 
+def with_formulas(items, formulas, lang="en") -> list:
+    """The worked solution with the formulas of ``formulas`` (``answers.symbolic``) before
+    its results: each a 'formula' block, written as MathML (with its LaTeX) in HTML and as
+    LaTeX in Markdown."""
+    from linkcli.answers.symbolic import Entry, sections
+    rank = formulas.ranking()
+    out = []
+    for title, entries in sections(formulas, lang):
+        out.append(Block("heading", title))
+        for e in entries:
+            out.append(Block("formula", (e, rank)) if isinstance(e, Entry) else Block("text", e))
+    at = next((i for i, b in enumerate(items) if b.kind == "heading" and
+               b.content == WORDS[lang]["results"]), len(items))
+    return items[:at] + out + items[at:]
+
+
+def formula_latex(entry, rank) -> str:
+    """An Entry as one LaTeX equation."""
+    import sympy as sp
+    from linkcli.answers import notation
+    if entry.reads == "equation":
+        left, right = entry.value
+        return f"{notation.latex(left, rank)} = {notation.latex(right, rank)}"
+    if entry.reads == "system":
+        A, u, b = entry.value
+        return f"\\text{{{entry.label}}} \\quad " + " ".join(
+            notation.latex_matrix(x, rank) for x in (A, u)) + " = " + notation.latex_matrix(b, rank)
+    value = notation.latex_matrix(entry.value, rank) if isinstance(entry.value, sp.MatrixBase) \
+        else notation.latex(entry.value, rank, entry.terms)
+    label = notation.label_latex(entry.label) if entry.label else ""
+    return {"is": f"{label} = {value}", "zero": f"{label} \\quad {value} = 0" if label
+            else f"{value} = 0", "positive": f"{value} > 0"}[entry.reads]
+
+
+def formula_mathml(entry, rank) -> str:
+    """An Entry as a display <math> element, its LaTeX kept as the annotation."""
+    import sympy as sp
+    from linkcli.answers import notation
+    if entry.reads == "equation":
+        left, right = (notation.mathml_body(x, rank) for x in entry.value)
+        return _math(f"{left}<mo>=</mo>{right}", formula_latex(entry, rank))
+    if entry.reads == "system":
+        A, u, b = (notation.mathml_matrix(x, rank) for x in entry.value)
+        label = f"<mtext>{html.escape(entry.label)}</mtext><mspace width=\"1em\"/>"
+        return _math(f"{label}{A}{u}<mo>=</mo>{b}", formula_latex(entry, rank))
+    value = notation.mathml_matrix(entry.value, rank) if isinstance(entry.value, sp.MatrixBase) \
+        else notation.mathml_body(entry.value, rank, entry.terms)
+    label = notation.label_mathml(entry.label) if entry.label else ""
+    body = {"is": f"{label}<mo>=</mo>{value}",
+            "zero": f"{label}<mspace width=\"1em\"/>{value}<mo>=</mo><mn>0</mn>" if label
+            else f"{value}<mo>=</mo><mn>0</mn>",
+            "positive": f"{value}<mo>&gt;</mo><mn>0</mn>"}[entry.reads]
+    return _math(body, formula_latex(entry, rank))
+
+
+def _math(body, tex) -> str:
+    """A display <math> element of ``body``, its LaTeX ``tex`` as the annotation."""
+    return ('<math xmlns="http://www.w3.org/1998/Math/MathML" display="block"><semantics>'
+            f'<mrow>{body}</mrow><annotation encoding="application/x-tex">'
+            f'{html.escape(tex)}</annotation></semantics></math>')
+
+
 # --- renderers ---------------------------------------------------------------------------
 def to_html(items, lang="en") -> str:
     def esc(text):
@@ -208,12 +273,20 @@ def to_html(items, lang="en") -> str:
         elif b.kind == "figure":
             svg = visible(b.content[b.content.find("<svg"):])
             body.append(f'<div class="figure">{svg}</div>')
+        elif b.kind == "formula":
+            body.append(f'<div class="formula">{formula_mathml(*b.content)}</div>')
     title = esc(str(items[0].content)) if items else "linkcli"
     style = ("body{font-family:sans-serif;max-width:60em;margin:2em auto;padding:0 1em}"
              "pre{background:#f6f6f6;padding:.6em;overflow-x:auto}"
              "table{border-collapse:collapse;margin:.5em 0}"
              "td,th{border:1px solid #bbb;padding:.2em .6em;text-align:left}"
-             ".figure svg{max-width:100%;height:auto}")
+             ".figure svg{max-width:100%;height:auto}"
+             ".formula{overflow-x:auto;margin:.4em 0}"
+             'math{font-family:"Latin Modern Math","STIX Two Math","DejaVu Math TeX Gyre",math}'
+             "mtable.matrix{border:solid currentColor;border-width:0 1.5px;padding:0 .3em;"
+             "background:" + ",".join(f"linear-gradient(currentColor,currentColor) {x} {y}/.3em "
+                                      "1.5px no-repeat" for x in ("left", "right")
+                                      for y in ("top", "bottom")) + "}")
     return (f'<!DOCTYPE html>\n<html lang="{lang}"><head><meta charset="utf-8">'
             f"<title>{title}</title><style>{style}</style></head><body>"
             + "\n".join(body) + "</body></html>\n")
@@ -237,6 +310,8 @@ def to_markdown(items) -> str:
                                   for row in b.content]))
         elif b.kind == "figure":
             out.append("(figure: see the HTML export)")
+        elif b.kind == "formula":
+            out.append("$$" + formula_latex(*b.content) + "$$")
     return "\n\n".join(out) + "\n"
 
 

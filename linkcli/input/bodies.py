@@ -1,9 +1,7 @@
 """Parsing of the bodies: links and rigid shapes, actuators, slider blocks and guides."""
 from __future__ import annotations
 
-import cmath
-import math
-
+from linkcli.model.exact import cis, plane, sqrt
 from linkcli.model.mechanism import FRAME, Actuator, Body, Guide
 from linkcli.input.reader import _Skip
 
@@ -35,7 +33,7 @@ class BodiesSection:
                 raise self.error(path + ("length",), "'length' is for a link of two points; "
                                  "use 'shape' or 'local' for three or more")
             length = self.positive(spec["length"], path + ("length",), units)
-            local = {points[0]: 0j, points[1]: complex(length, 0)}
+            local = {points[0]: 0j, points[1]: plane(length, 0)}
         elif given[0] == "local":
             local = self.local(spec["local"], path + ("local",), points, units)
         else:
@@ -66,7 +64,7 @@ class BodiesSection:
         spec = self.mapping(spec, path, set(points[1:]), points[1:])
         local = {points[0]: 0j}
         base = self.mapping(spec[points[1]], path + (points[1],), {"length"}, ("length",))
-        local[points[1]] = complex(self.positive(base["length"], path + (points[1], "length"),
+        local[points[1]] = plane(self.positive(base["length"], path + (points[1], "length"),
                                                  units), 0)
         for p in points[2:]:
             local[p] = self.shape_point(spec[p], path + (p,), local, units)
@@ -93,13 +91,13 @@ class BodiesSection:
             if h2 < 0:
                 raise self.error(path + ("distances",), "these distances do not close a triangle")
             sign = 1 if side == "left" else -1
-            return a + (along + 1j * sign * math.sqrt(h2)) * (b - a) / base
+            return a + plane(along, sign * sqrt(h2)) * (b - a) / base
         length = self.positive(self.get(spec, path, "length"), path + ("length",), units)
         angle = self.number(spec.get("angle", 0), path + ("angle",), "angle", units)
         origin = spec.get("from")
         start = local[next(iter(local))] if origin is None else local[
             self.name(origin, path + ("from",), local)]
-        return start + length * cmath.exp(1j * angle)
+        return start + length * cis(angle)
 
     def actuators(self, data, pool, bodies) -> dict:
         spec = self.mapping(self.get(data, (), "actuators", required=False, default={}) or {},
@@ -254,10 +252,10 @@ class BodiesSection:
         if "dx" in value or "dy" in value:
             if guide.carrier != FRAME:
                 raise self.error(path, "on a moving guide give {along: .., normal: ..}")
-            world = complex(self.number(value.get("dx", 0), path + ("dx",), "length", units),
+            world = plane(self.number(value.get("dx", 0), path + ("dx",), "length", units),
                             self.number(value.get("dy", 0), path + ("dy",), "length", units))
             return world * to_guide
-        return complex(self.number(value.get("along", 0), path + ("along",), "length", units),
+        return plane(self.number(value.get("along", 0), path + ("along",), "length", units),
                        self.number(value.get("normal", 0), path + ("normal",), "length", units))
 
     def guide(self, value, path, units, pool, bodies, fixed, slider) -> Guide:
@@ -279,10 +277,10 @@ class BodiesSection:
             if len(value) != 1 + ("offset" in value):
                 raise self.error(path, "give only one of x or y for an axis-parallel guide")
             if "x" in value:
-                origin = complex(self.number(value["x"], path + ("x",), "length", units), 0)
+                origin = plane(self.number(value["x"], path + ("x",), "length", units), 0)
                 direction = 1j
             else:
-                origin = complex(0, self.number(value["y"], path + ("y",), "length", units))
+                origin = plane(0, self.number(value["y"], path + ("y",), "length", units))
                 direction = 1
         else:
             through = self.get(value, path, "through")
@@ -293,7 +291,7 @@ class BodiesSection:
             else:
                 origin = self.xy(through, path + ("through",), units)
             angle = self.number(self.get(value, path, "angle"), path + ("angle",), "angle", units)
-            direction = cmath.exp(1j * angle)
+            direction = cis(angle)
         b, c = f"~{slider}.0", f"~{slider}.1"
         # a direction vector of at least unit length (SI): never underflows when squared
         scale = max(abs(origin), max((abs(p) for p in fixed.values()), default=0.0), 1.0)

@@ -15,8 +15,7 @@ is given; a cord must be taut and tangent in the figure.
 """
 from __future__ import annotations
 
-import cmath
-
+from linkcli.model.exact import cis
 from linkcli.model.mechanism import Rolling
 
 SIDES = {"left": 1, "right": -1}
@@ -60,7 +59,7 @@ class ContactsSection:
         axes = {"x": 1 + 0j, "-x": -1 + 0j, "y": 1j, "-y": -1j}
         if isinstance(value, str) and value in axes:
             return axes[value]
-        return cmath.exp(1j * self.number(value, path, "angle", units))
+        return cis(self.number(value, path, "angle", units))
 
     def side(self, spec, path) -> int:
         side = spec.get("side", "left")

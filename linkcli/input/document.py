@@ -191,6 +191,8 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                     if key not in self.overrides else float(self.overrides[key])
             except _Skip:
                 continue
+            if self.symbolic is not None:
+                self.names[key] = self.symbolic.param(key, self.names[key])
 
     def frame(self, data, units) -> dict:
         frame = self.mapping(self.get(data, (), "frame"), ("frame",))
@@ -242,9 +244,12 @@ class Source:
     written: dict = field(default_factory=dict, compare=False)
 
 
-def build(doc: Document, k: int | None = None, params: dict | None = None) -> Mechanism:
+def build(doc: Document, k: int | None = None, params: dict | None = None,
+          symbolic=None) -> Mechanism:
     """The validated mechanism of ``doc`` for matricola digit ``k`` (None: the file's), its
-    ``params`` given these values (numbers as the file writes them) instead of the file's."""
+    ``params`` given these values (numbers as the file writes them) instead of the file's;
+    with ``symbolic`` (an ``input.symbols.Symbolic``) its numbers carry their formulas in
+    the parameters (``model.exact``)."""
     params = dict(params or {})
     if params:
         declared = doc.data.get("params") if isinstance(doc.data, dict) else None
@@ -259,7 +264,7 @@ def build(doc: Document, k: int | None = None, params: dict | None = None) -> Me
                     not math.isfinite(value):
                 raise InputError(f"parameter '{name}' must be a finite number, got {value!r}",
                                  file=doc.name, key=f"params.{name}")
-    parser = Parser(doc, k)
+    parser = Parser(doc, k, symbolic)
     parser.overrides = params
     mech = parser.parse()
     mech.source = Source(doc, k, tuple(sorted(params.items())), parser.written)

@@ -23,9 +23,9 @@ point, body and coordinate named is checked against it.
 """
 from __future__ import annotations
 
-import cmath
 import math
 
+from linkcli.model.exact import cis, hypot, plane, times_pi
 from linkcli.model import elements as el
 from linkcli.model.mechanism import FRAME
 
@@ -113,7 +113,7 @@ class ElementsReader:
         if along in ("x", "y"):
             return el.Measure("along", a, b, 1 + 0j if along == "x" else 1j)
         angle = self.p.number(along, path + ("along",), "angle", self.units)
-        return el.Measure("along", a, b, cmath.exp(1j * angle))
+        return el.Measure("along", a, b, cis(angle))
 
     def spring(self, name, value, path) -> el.Spring:
         self.p.name(name, path, what="spring")
@@ -201,10 +201,10 @@ class ElementsReader:
         at = self.p.name(spec["at"], path + ("at",), set(self.mech.points))
         fx = self.p.number(spec.get("x", 0), path + ("x",), "force", self.units)
         fy = self.p.number(spec.get("y", 0), path + ("y",), "force", self.units)
-        amplitude = math.hypot(fx, fy)
+        amplitude = hypot(fx, fy)
         if amplitude == 0:
             raise self.p.error(path, "a harmonic force needs a non-zero x or y amplitude")
-        return el.Harmonic(name, "force", at, complex(fx, fy) / amplitude, amplitude,
+        return el.Harmonic(name, "force", at, plane(fx, fy) / amplitude, amplitude,
                            self.phase(spec, path))
 
     def coordinate(self, value, path) -> int:
@@ -230,7 +230,7 @@ class ElementsReader:
         wavelength = self.positive(spec["wavelength"], path + ("wavelength",), "length",
                                    "wavelength")
         speed = self.positive(spec["speed"], path + ("speed",), "speed", "speed")
-        omega = 2 * math.pi * speed / wavelength
+        omega = 2 * times_pi(speed) / wavelength
         if out.frequency is not None and abs(out.frequency - omega) > 1e-12 * omega:
             raise self.p.error(path, f"the road gives Omega = 2 pi V / L = {omega:.6g} rad/s, "
                                "but excitation.frequency is given too",

@@ -31,6 +31,7 @@ import re
 import numpy as np
 
 from linkcli.errors import ExpressionError
+from linkcli.model import exact as _exact
 
 MAX_LENGTH = 400
 MAX_DEPTH = 40
@@ -263,8 +264,11 @@ def _characters(text, source):
                               hint="use ASCII letters, digits, + - * / ** and parentheses")
 
 
-def evaluate(text, names: dict | None = None) -> float:
-    """Value of ``text`` (a number or an expression string) with ``names`` bound."""
+def evaluate(text, names: dict | None = None, exact: bool = False) -> float:
+    """Value of ``text`` (a number or an expression string) with ``names`` bound.
+
+    ``exact``: the names may be ``model.exact`` numbers and the result is one where an
+    operand is (pi and deg are exact too)."""
     if isinstance(text, bool):
         raise ExpressionError(f"expected a number, got {text!r}")
     if isinstance(text, (int, float)):
@@ -272,11 +276,16 @@ def evaluate(text, names: dict | None = None) -> float:
     if not isinstance(text, str):
         raise ExpressionError(f"expected a number or an expression, got {type(text).__name__}")
     source, tree = _parse(text)
-    scope = dict(CONSTANTS)
+    scope = _exact.constants() if exact else dict(CONSTANTS)
     scope.update(names or {})
-    value = _Walker(scope, source).value(tree.body, 0)
+    value = _Walker(scope, source, exact).value(tree.body, 0)
     _characters(text, source)
-    return float(_in_range(value, f"'{_short(source)}'"))
+    return _float(_in_range(value, f"'{_short(source)}'"))
+
+
+def _float(value) -> float:
+    """``value`` as a float, keeping an exact number's formula."""
+    return value if isinstance(value, _exact.Exact) else float(value)
 
 
 class Expression:
@@ -328,15 +337,16 @@ class _Visit:
 
 
 class _Walker(_Visit):
-    def __init__(self, scope: dict, source: str):
+    def __init__(self, scope: dict, source: str, exact: bool = False):
         super().__init__(source)
         self.scope = scope
+        self.exact = exact          # literals as exact numbers (0.5 is 1/2)
 
     def value(self, node, depth: int):
         if depth > MAX_DEPTH:
             raise self.fail("nesting too deep")
         result = self._node(node, depth + 1)
-        if type(result) is float:           # the parameters' case, kept fast
+        if isinstance(result, float):       # the parameters' case, kept fast
             if not math.isfinite(result) or abs(result) > MAX_MAGNITUDE:
                 raise self.fail("result is not a finite number")
             return result
@@ -351,7 +361,8 @@ class _Walker(_Visit):
         if isinstance(node, ast.Constant):
             if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
                 raise self.fail(f"constant {node.value!r} is not a number")
-            return _finite(node.value, f"a number in expression '{_short(self.source)}'")
+            value = _finite(node.value, f"a number in expression '{_short(self.source)}'")
+            return _exact.Exact(value, _exact.constant(node.value)) if self.exact else value
         if isinstance(node, ast.Name):
             if node.id not in self.scope:
                 names = sorted(self.scope)      # at most 10: the text stays linear in the file
@@ -359,12 +370,13 @@ class _Walker(_Visit):
                                                   if len(names) > 10 else "")) or "none"
                 raise self.fail(f"unknown name '{node.id}' (known: {known})")
             value = self.scope[node.id]
-            return value if isinstance(value, (Rates, np.ndarray)) else float(value)
+            return value if isinstance(value, (Rates, np.ndarray, _exact.Exact)) \
+                else float(value)
         if isinstance(node, ast.UnaryOp) and isinstance(node.op, (ast.USub, ast.UAdd)):
             operand = self.value(node.operand, depth)
             if isinstance(node.op, ast.UAdd):
                 return operand
-            return -operand if type(operand) is float else _mul(-1.0, operand)
+            return -operand if isinstance(operand, float) else _mul(-1.0, operand)
         if isinstance(node, ast.BinOp):
             return self._binary(node, depth)
         if isinstance(node, ast.Call):
@@ -374,7 +386,7 @@ class _Walker(_Visit):
     def _binary(self, node: ast.BinOp, depth: int):
         left = self.value(node.left, depth)
         right = self.value(node.right, depth)
-        if type(left) is float and type(right) is float:
+        if isinstance(left, float) and isinstance(right, float):
             return self._scalar(node.op, left, right)
         a, b = _value(left), _value(right)
         if isinstance(node.op, ast.Pow):
@@ -416,12 +428,12 @@ class _Walker(_Visit):
                 raise self.fail("zero to a negative power") from None
             if isinstance(result, complex):
                 raise self.fail("power of a negative number to a fractional exponent")
-            return float(result)
+            return _float(result)
         operation = _BINARY.get(type(op))
         if operation is None:
             raise self.fail(_operator(op))
         try:
-            return float(operation(left, right))
+            return _float(operation(left, right))
         except ZeroDivisionError:
             raise self.fail("division by zero") from None
         except OverflowError:
@@ -430,9 +442,9 @@ class _Walker(_Visit):
     def _call(self, node: ast.Call, depth: int):
         name, (func, arity, domain, rates) = _function(node, self.fail)
         args = [self.value(arg, depth) for arg in node.args]
-        if all(type(a) is float for a in args):
+        if all(isinstance(a, float) for a in args):
             try:
-                return float(SCALAR[name](*args))
+                return _exact.call(name, SCALAR[name], args)
             except (ValueError, OverflowError):
                 shown = ", ".join(f"{a:g}" for a in args)
                 raise self.fail(f"{name}({shown}) is out of its domain") from None

@@ -7,9 +7,9 @@ it); on an actuator it is the axial load p A (p > 0 pushes the ends apart).
 """
 from __future__ import annotations
 
-import cmath
 import math
 
+from linkcli.model.exact import cis, hypot, phase, plane
 from linkcli.model.mechanism import FRAME, Driver, Load
 from linkcli.input.reader import UNKNOWN
 
@@ -65,7 +65,7 @@ class LoadsSection:
         kind, a, b = self.coordinate_kind(spec, path, pool)
         if b is not None:
             z = figure.get(b, 0j) - figure.get(a, 0j)
-            measured = cmath.phase(z) if kind == "angle" else abs(z)
+            measured = phase(z) if kind == "angle" else abs(z)
         else:
             z = figure.get(a, 0j)
             measured = z.real if kind == "x" else z.imag
@@ -140,7 +140,7 @@ class LoadsSection:
         if "magnitude" in value:
             angle = self.number(self.get(value, path, "angle"), path + ("angle",), "angle", units)
             amount = self.amount(value["magnitude"], path + ("magnitude",), "force", units)
-            return Load(name, "force", at, cmath.exp(1j * angle), amount)
+            return Load(name, "force", at, cis(angle), amount)
         comps = {c: value[c] for c in ("x", "y") if c in value}
         if not comps:
             raise self.error(path, "a force needs x and/or y components, or magnitude and angle")
@@ -153,8 +153,8 @@ class LoadsSection:
         fy = self.number(comps.get("y", 0), path + ("y",), "force", units)
         if len(comps) == 1:   # a force along one axis keeps its sign as its value
             return Load(name, "force", at, 1 if "x" in comps else 1j, fx if "x" in comps else fy)
-        magnitude = math.hypot(fx, fy)
-        direction = complex(fx, fy) / magnitude if magnitude else 1
+        magnitude = hypot(fx, fy)
+        direction = plane(fx, fy) / magnitude if magnitude else 1
         return Load(name, "force", at, direction, magnitude)
 
     # --- pressure on a piston or in an actuator ---------------------------------------
@@ -215,7 +215,7 @@ class LoadsSection:
         if "y" in spec:
             return 1
         if "angle" in spec:
-            return cmath.exp(1j * self.number(spec["angle"], path + ("angle",), "angle", units))
+            return cis(self.number(spec["angle"], path + ("angle",), "angle", units))
         p, q = spec["along"]
         frame = data["frame"]
         z = self.xy(frame[q], ("frame", q), units) - self.xy(frame[p], ("frame", p), units)

@@ -8,6 +8,7 @@ from __future__ import annotations
 import re
 
 from linkcli.input import expressions
+from linkcli.model.exact import plane
 from linkcli.errors import ExpressionError, InputError
 from linkcli.model.mechanism import FRAME
 from linkcli.model.units import Units
@@ -59,8 +60,9 @@ def _kind(value) -> str:
 class Reader:
     """Reads values at YAML paths, recording located errors."""
 
-    def __init__(self, doc: Document, k: int | None):
+    def __init__(self, doc: Document, k: int | None, symbolic=None):
         self.doc = doc
+        self.symbolic = symbolic        # an input.symbols.Symbolic: params as symbols
         self.errors: list[InputError] = []
         self.k_override = k
         self.names: dict[str, float] = {}
@@ -100,13 +102,15 @@ class Reader:
 
     def number(self, value, path, kind: str | None = None, units: Units | None = None) -> float:
         try:
-            number = expressions.evaluate(value, self.names)
+            number = expressions.evaluate(value, self.names, self.symbolic is not None)
         except ExpressionError as exc:
             raise self.error(path, exc.detail, exc.hint) from None
         if isinstance(value, str):
             self.written[tuple(path)] = (value, kind)
             if kind is not None:
                 self.note_use(value, kind)
+        if self.symbolic is not None:
+            return self.symbolic.convert(number, kind, units)
         if kind == "angle":
             return units.angle_to_si(number)
         if kind is not None:
@@ -149,7 +153,7 @@ class Reader:
             raise self.error(path, f"expected coordinates [x, y], got {value!r}")
         x = self.number(value[0], path + (0,), "length", units)
         y = self.number(value[1], path + (1,), "length", units)
-        return complex(x, y)
+        return plane(x, y)
 
     def block(self, func, *args):
         """Run one parsing step; on error keep going with the next."""

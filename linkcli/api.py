@@ -67,6 +67,19 @@ class Linkage:
         """
         return sweep(self.model, q, sweep_names(self.model, names), method, tol, qdot, qddot)
 
+    def with_params(self, **params) -> "Linkage":
+        """The same file with some of its ``params`` given other values (numbers as the file
+        writes them): ``linkage.with_params(ks=200).solve()``."""
+        from linkcli.input.document import rebuild
+        return Linkage(rebuild(self.model, params))
+
+    def vary(self, name: str, values, *, names=None):
+        """The answers ``names`` (default: the report's) at each of ``values`` of the
+        parameter ``name``: an ``answers.vary.Varied`` (``q`` the values, ``solved`` the
+        rows answered, ``values`` name -> array over them, ``issues`` the values left out)."""
+        from linkcli.answers.vary import vary
+        return vary(self.model, name, values, names)
+
 
 def jit(on: bool = True) -> bool:
     """Arrays of driver values solved by the compiled loop from now on (``on``), or by

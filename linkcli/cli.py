@@ -53,24 +53,34 @@ NUMBERS_OPTION = click.option("--numbers", default=None, metavar="NAMES",
                               "numbers, e.g. --numbers M,L.")
 
 
-def _symbolic_load(file, k, symbolic, numbers):
+def _symbolic_load(file, k, symbolic, numbers, designed=True):
     """(model, formulas' source) of ``file``: the document is read once when the formulas
-    are asked for (standard input cannot be read twice)."""
+    are asked for (standard input cannot be read twice); a design question answered unless
+    ``designed`` is False."""
     if numbers is not None and not symbolic:
         raise InputError("--numbers goes with --symbolic", key="--numbers",
                          hint="add --symbolic, or drop --numbers")
     if not symbolic:
-        return _load(file, k), None
+        return _load(file, k, designed), None
     from linkcli.input.document import build
     from linkcli.input.source import load_file
     doc = load_file(file)
     return build(doc, k), doc
 
 
-def _load(path, k):
-    """The validated model of ``path`` for digit ``k``."""
+def _load(path, k, designed=True):
+    """The validated model of ``path`` for digit ``k``; where the file asks a design question
+    (``find:``), built with its solution unless ``designed`` is False."""
     from linkcli.api import load
-    return load(path, k).model
+    model = load(path, k).model
+    if designed and model.design is not None:
+        from linkcli.answers.design import resolved
+        from linkcli.answers.sheet import evaluate
+        try:
+            model = resolved(model, evaluate)
+        except LinkcliError as exc:
+            raise exc.located(path)
+    return model
 
 
 def _style(text: str, **style) -> str:
@@ -323,7 +333,7 @@ def explain(file, k, pseudocode, output, symbolic, numbers):
     else:
         from linkcli.answers.explain import explain as text
     _not_an_input(output, file)
-    mech, doc = _symbolic_load(file, k, symbolic, numbers)
+    mech, doc = _symbolic_load(file, k, symbolic, numbers, designed=pseudocode)
     out = text(mech)
     if doc is not None:
         from linkcli.answers.symbolic import append
@@ -437,12 +447,14 @@ def check(paths, verbose, form):
 @click.option("--modes", is_flag=True, help="Vibrations: the mode shapes on the mechanism.")
 @click.option("--free", default=None, metavar="0:T:STEPS",
               help="Vibrations: free response from 'initial', linear and nonlinear (s).")
+@click.option("--vary", default=None, metavar="NAME=FROM:TO:STEPS",
+              help="Answers against a parameter of 'params' (any file, vibrations too).")
 @click.option("--y", "names", multiple=True, metavar="NAME",
               help="A quantity of the report (repeat for more panels), e.g. --y c --y cdot; "
                    "with --frf or --free, coordinates (default: every free one).")
 @K_OPTION
 @click.option("-o", "--output", required=True, help="Picture to write (.png, .svg or .pdf).")
-def plot(file, sweep, frf, modes, free, names, k, output):
+def plot(file, sweep, frf, modes, free, vary, names, k, output):
     """Plot quantities of FILE against the driver, or a vibration problem's response.
 
     \b
@@ -450,14 +462,19 @@ def plot(file, sweep, frf, modes, free, names, k, output):
       linkcli plot mechanisms/polimi-crank-slider.yaml --sweep 0:360:360 --y c --y beta -o pos.png
       linkcli plot mechanisms/fourbar-inverse-dynamics.yaml --sweep 0:360:360 --y Mm -o mm.png
       linkcli plot mechanisms/polimi-2001-09-18-vibration.yaml --modes -o modes.png
+      linkcli plot mechanisms/polimi-2001-09-18-vibration.yaml --vary ks=50:150:50 --y w1 -o w.png
     """
     chosen = [flag for flag, value in (("--sweep", sweep), ("--frf", frf), ("--modes", modes),
-                                       ("--free", free)) if value]
+                                       ("--free", free), ("--vary", vary)) if value]
     if len(chosen) != 1:
-        raise InputError("give one of --sweep, --frf, --modes, --free", key="plot",
+        raise InputError("give one of --sweep, --frf, --modes, --free, --vary", key="plot",
                          hint="--sweep FROM:TO:STEPS --y NAME for a mechanism with a driver")
     _not_an_input(output, file)
-    mech = _load(file, k)
+    mech = _load(file, k, designed=not vary)     # a design question: solved at each value
+    if vary:
+        from linkcli.pictures.plotting import plot_vary
+        plot_vary(mech, vary, list(names), output)
+        return
     if sweep:
         from linkcli.answers.limits import sweep_names
         from linkcli.pictures.plotting import plot as make
@@ -616,8 +633,11 @@ def _tol(tol):
 
 @cli.command()
 @click.argument("file")
-@click.option("--from", "start", type=float, required=True, help="First driver value.")
-@click.option("--to", "stop", type=float, required=True, help="Last driver value.")
+@click.option("--from", "start", type=float, default=None, help="First driver value.")
+@click.option("--to", "stop", type=float, default=None, help="Last driver value.")
+@click.option("--vary", default=None, metavar="NAME=FROM:TO:STEPS",
+              help="Vary a parameter of 'params' instead of the driver: every answer at "
+              "STEPS + 1 of its values (as the file writes it).")
 @click.option("--steps", type=int, default=None, help="Number of intervals (N + 1 values).")
 @click.option("--step", type=float, default=None, help="Interval between driver values.")
 @click.option("--format", "form", type=click.Choice(["csv", "json", "table"]), default="csv",
@@ -631,27 +651,50 @@ def _tol(tol):
 @click.option("--tol", type=float, default=None, help="Newton's relative tolerance.")
 @K_OPTION
 @click.option("-o", "--output", default=None, help="Write to this file instead of stdout.")
-def sweep(file, start, stop, steps, step, form, every, names, decimals, method, tol, k, output):
-    """Solve FILE over a range of driver values, one row per value.
+def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, method, tol, k,
+          output):
+    """Solve FILE over a range of driver values, one row per value; or, with --vary, over
+    a range of one of its parameters.
 
     Values are FROM + i*STEP in the driver's display unit.  Positions that
     cannot be assembled, rows where velocities are undefined and branch points
-    are reported on stderr (and in JSON); the other rows are printed.
+    are reported on stderr (and in JSON); the other rows are printed.  With
+    --vary every row is the whole answer sheet at one value of the parameter
+    (vibration problems too); values without answers are reported the same way.
 
     \b
     Examples:
       linkcli sweep mechanisms/padova-2021-02-dispari.yaml --from 0 --to 360 --steps 360
       linkcli sweep mechanisms/padova-2020-07.yaml --from 100 --to 160 --step 5 --format table
+      linkcli sweep mechanisms/polimi-2001-09-18-vibration.yaml --vary ks=50:150:10
     """
     from linkcli.answers import sweep as sweep_mod
     _not_an_input(output, file)
-    mech = _load(file, k)
-    q = sweep_mod.driver_range(start, stop, steps, step)
     chosen = [n.strip() for n in names.split(",") if n.strip()] if names else None
-    from linkcli.answers.limits import sweep_names
-    chosen = sweep_names(mech, chosen)      # maxima, strokes ... are not functions of q
-    sweep_mod.check_every(every)
-    sweeper = sweep_mod.Sweeper(mech, q, chosen, method=method, tol=_tol(tol))
+    if vary is not None:
+        given = [flag for flag, value in (("--from", start), ("--to", stop), ("--steps", steps),
+                                          ("--step", step)) if value is not None]
+        if given:
+            raise InputError(f"--vary takes the place of {', '.join(given)}", key="--vary",
+                             hint="vary either the driver (--from, --to, --steps) or a "
+                             "parameter (--vary NAME=FROM:TO:STEPS)")
+        from linkcli.answers import vary as vary_mod
+        name, values = vary_mod.parse_vary(vary)
+        mech = _load(file, k, designed=False)     # a design question: solved at each value
+        sweep_mod.check_every(every)
+        varied = vary_mod.vary(mech, name, values, chosen, method=method, tol=_tol(tol))
+        writer = (lambda put: vary_mod.write(varied, form, decimals, put))
+    else:
+        if start is None or stop is None:
+            raise InputError("give --from and --to (the driver's range), or --vary "
+                             "NAME=FROM:TO:STEPS (a parameter's)", key="--from")
+        mech = _load(file, k)
+        q = sweep_mod.driver_range(start, stop, steps, step)
+        from linkcli.answers.limits import sweep_names
+        chosen = sweep_names(mech, chosen)      # maxima, strokes ... are not functions of q
+        sweep_mod.check_every(every)
+        sweeper = sweep_mod.Sweeper(mech, q, chosen, method=method, tol=_tol(tol))
+        writer = (lambda put: sweep_mod.write(sweeper, form, every, decimals, put))
     opened = []
 
     def put(text):      # rows are printed as each block is solved; the file opened then
@@ -667,7 +710,7 @@ def sweep(file, start, stop, steps, step, form, every, names, decimals, method, 
                              hint="check the folder exists and is writable") from None
 
     try:
-        issues = sweep_mod.write(sweeper, form, every, decimals, put)
+        issues = writer(put)
     finally:
         for handle in opened:
             handle.close()

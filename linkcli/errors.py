@@ -85,6 +85,18 @@ class StructureError(SolveError):
     """The structure does not decompose into the supported Assur groups."""
 
 
+class DesignError(SolveError):
+    """A design question (``find:``) without one answer: ``reason`` is 'no root', 'several
+    roots', 'unreachable', 'singular' or 'trial' (a trial of the search that cannot be
+    solved: the mechanism does not assemble there, a value is out of range); ``values`` the
+    unknowns' values concerned (the roots found, the trial)."""
+
+    def __init__(self, detail: str, *, reason: str = "", values=(), **kw):
+        super().__init__(detail, **kw)
+        self.reason = reason
+        self.values = tuple(values)
+
+
 class AssemblyError(SolveError):
     """A group cannot be assembled: its links fall short (or overlap)."""
 

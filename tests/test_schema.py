@@ -60,7 +60,11 @@ def test_schema_states_the_loaders_tables():
     report = props["report"]["properties"]
     assert set(report) == set(parsing.SECTIONS) | {"decimals"}
     from linkcli.model.mechanism import VIBRATION
-    assert set(DEFS["vibrationQuantity"]["properties"]) == set(VIBRATION) | {"unit", "time"}
+    from linkcli.input.oscillation import OSCILLATION
+    assert set(DEFS["vibrationQuantity"]["properties"]) == \
+        set(VIBRATION) - set(OSCILLATION) | {"unit", "time", "part"}
+    assert set(DEFS["oscillationQuantity"]["properties"]) == \
+        set(OSCILLATION) | {"unit", "part", "monic", "peak"}
     assert set(DEFS["vibrationQuantity"]["properties"]["unit"]["enum"]) == set(units.FREQUENCY)
     reserved = props["params"]["anyOf"][1]["propertyNames"]["allOf"][1]["not"]["enum"]
     assert set(reserved) == set(expressions.CONSTANTS) | set(expressions.FUNCTIONS) | {"k"}
@@ -155,6 +159,29 @@ _ALWAYS_LOADER = [           # messages of rules that need the rest of the file
     r"is of a position quantity",
     r"needs a driver: a vibration problem has coordinates",
     r"^the range goes up",
+    # expressions (input.derived): names, cycles and dimensions
+    r"is not defined \(its definition failed\)$",
+    r"is not a quantity, a quantity's rate, a parameter or k",
+    r"^the expression reads itself",
+    r"^the expression is ",
+    r"^it (adds|subtracts|compares) '",
+    r"takes a pure number or an angle",
+    r"^parameter '.*' has no unit",
+    r"^'.*' is not defined: the expression",
+    r"^'.*' is not defined: '.*' has",
+    # design questions (input.find) and the vibration chapters' quantities
+    r"is not a parameter of this file, so it cannot be an unknown",
+    r"is also a quantity of the file$",
+    r"unknowns? and \d+ targets?: a design question",
+    r"^the target '.*' is not an answer",
+    r"^the interval goes up",
+    r"^cannot read the target",
+    r"^'choose' picks one of several roots",
+    r"is an unknown of 'find'",
+    r"' is (a|an|of dimension) .* and the (target's |interval's )?unit '",
+    r"^the values of '.*' are given in",
+    r"^the two modes of a beat period must differ",
+    r"^'unstretched' names no spring",
 ]
 _VALUE_RULES = [             # loader-only when the value is an expression (text)
     r"in expression '", r"^cannot parse expression", r"^'.*' is too small",

@@ -129,7 +129,7 @@ def test_formulas_hold_for_other_numbers(name):
     f, _ = of(name)
     doc = moved(name)
     reading = Symbolic()
-    build(doc, None, reading)
+    build(doc, None, symbolic=reading)
     values = dict(reading.values())
     if "g" in f.symbols:
         values[sp.Symbol("g", positive=True)] = f.numbers[sp.Symbol("g", positive=True)]
@@ -150,7 +150,7 @@ def test_formulas_hold_for_other_numbers(name):
 def closures_of(name):
     from linkcli.kinematics.symbolic import Closures, Symbols
     reading = Symbolic()
-    mech = build(load_file(os.path.join(MECHANISMS, name)), None, reading)
+    mech = build(load_file(os.path.join(MECHANISMS, name)), None, symbolic=reading)
     return Closures(Symbols(mech, reading.si(), reading.values())), reading
 
 

@@ -6,6 +6,9 @@ from linkcli.model.mechanism import FRAME
 
 
 def explain(mech) -> str:
+    from linkcli.answers import design
+    from linkcli.answers.sheet import evaluate
+    asked, mech = mech, design.resolved(mech, evaluate)     # a design question: its solution's
     solver = solver_for(mech)
     count = solver.topology.grubler
     lines = [mech.title, "", "Grübler's count (planar)",
@@ -47,7 +50,7 @@ def explain(mech) -> str:
         lines += [""] + balance_lines(mech)
     else:
         lines += ["", "Statics by virtual work: sum of load powers = 0"] + _statics_terms(mech)
-    return "\n".join(lines)
+    return "\n".join(lines + design.explain_lines(asked, evaluate))
 
 
 def _what(d) -> str:

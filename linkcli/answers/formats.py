@@ -11,13 +11,14 @@ import numpy as np
 from linkcli.model.mechanism import REPORT_SECTIONS
 
 HEADINGS = {
-    "en": {"position": "Position analysis", "velocity": "Velocity analysis",
+    "en": {"design": "Design (solved parameters)", "position": "Position analysis", "velocity": "Velocity analysis",
            "acceleration": "Acceleration analysis", "statics": "Statics (virtual work)",
            "points": "Coordinates of notable points", "driver": "Driver",
            "dynamics": "Dynamics (virtual work with inertia and gravity)",
            "dynamics_no_gravity": "Dynamics (virtual work with inertia)",
            "vibration": "Vibrations (linearised about the static equilibrium)"},
-    "it": {"position": "Analisi Cinematica di POSIZIONE",
+    "it": {"design": "Progetto (parametri ricavati)",
+           "position": "Analisi Cinematica di POSIZIONE",
            "velocity": "Analisi Cinematica di VELOCITA'",
            "acceleration": "Analisi Cinematica di ACCELERAZIONE",
            "statics": "Analisi STATICA",

@@ -6,14 +6,43 @@ a vibration problem, declared with coordinates, at its static equilibrium
 """
 from __future__ import annotations
 
-from linkcli.answers import quantities
-from linkcli.answers.quantities import Result
+import numpy as np
+
+from linkcli.answers import design, quantities
+from linkcli.answers.quantities import Result, expressions
 from linkcli.errors import InputError
 
 
 def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
              tol=None) -> Result:
-    """Every name of ``names`` (default: the report's) in its display unit."""
+    """Every name of ``names`` (default: the report's) in its display unit; a design
+    question answered first (``design``: the file built with its unknowns' solution),
+    expression quantities worked out from the answers they read (``quantities.expressions``)."""
+    if design.unsolved(mech):
+        mech = design.resolved(mech, evaluate)
+    names = list(names) if names is not None else quantities.report_names(mech)
+    solve, exprs = expressions.expand(mech, names)
+    solved = [n for n in solve if _kind(mech, n) == "design"]
+    result = _evaluate(mech, q, qdot, qddot, [n for n in solve if n not in solved], method,
+                       tol)
+    for name in solved:         # a solved parameter: the value the file was built with
+        value, result.units[name] = design.answer(mech, name)
+        shape = np.shape(getattr(result.kinematics, "q", None)) if q is not None else ()
+        result.values[name] = np.full(shape, value) if shape else value
+    if exprs or solved:
+        expressions.complete(mech, result, names, exprs)
+    if mech.design is not None:     # the figure is drawn for the parameters' start values
+        result.cautions = [c for c in result.cautions if c.kind != "figure"]
+    return result
+
+
+def _kind(mech, name):
+    quantity = mech.quantities.get(name)
+    return quantity.kind if quantity is not None else None
+
+
+def _evaluate(mech, q, qdot, qddot, names, method, tol) -> Result:
+    """``names`` (none an expression) by the path they need."""
     if mech.elements is None:       # a file with a driver: no vibration modules to import
         if _asks_limits(mech, names):   # maxima, strokes ...: answers.limits
             from linkcli.answers import limits
@@ -24,8 +53,7 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
         raise InputError("a vibration problem is solved at its static equilibrium: it takes no "
                          "driver values, rates or method", file=mech.file,
                          hint="drop q, qdot, qddot and --method")
-    names = list(names) if names is not None else quantities.report_names(mech)
-    return vibration.evaluate(mech, names, Result(mech))
+    return vibration.evaluate(mech, list(names), Result(mech))
 
 
 def _asks_limits(mech, names) -> bool:

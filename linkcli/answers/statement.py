@@ -271,6 +271,18 @@ PHRASES = {
         "initial conditions (from the equilibrium): {values}",
         "condizioni iniziali (dall'equilibrio): {values}",
     ),
+    "initial_figure": (
+        "initial conditions (from the figure): {values}",
+        "condizioni iniziali (dalla figura): {values}",
+    ),
+    "initial_unstretched": (
+        "initial conditions (from where {springs} unstretched): {values}",
+        "condizioni iniziali (da dove {springs} a riposo): {values}",
+    ),
+    "design": (
+        "find {unknowns} such that {targets}",
+        "trovare {unknowns} tali che {targets}",
+    ),
     "equilibrium_figure": (
         "the figure is a static equilibrium",
         "la figura è una posizione di equilibrio statico",
@@ -368,9 +380,19 @@ def data_lines(mech, lang: str = "en") -> list[str]:
     w = Writer(mech, lang)
     lines = []
     for part in (_frame, _links, _actuators, _sliders, _contacts, _motion, _loads, _dynamics,
-                 _elements):
+                 _elements, _design):
         lines += part(w)
     return [line for line in lines if line]
+
+
+def _design(w) -> list:
+    """A design question: its unknowns and the targets' values."""
+    design = w.mech.design
+    if design is None:
+        return []
+    targets = ", ".join(f"{t.name} = {w.num(t.value)}" + (f" {t.unit}" if t.unit else "")
+                        for t in design.targets)
+    return [w.w["design"].format(unknowns=", ".join(design.names), targets=targets)]
 
 
 def _frame(w) -> list:
@@ -737,7 +759,12 @@ def _elements(w) -> list:
             rate_unit, rate_f = w.units.display(c.base, 1)
             values.append(f"{c.name} = {_coordinate_offset(w, c, x0)}, {c.name}' = "
                           f"{w.num(v0 / rate_f)} {rate_unit}")
-        out.append(w.w["initial"].format(values=", ".join(values)))
+        start, springs = el.initial_from
+        key = {"equilibrium": "initial", "figure": "initial_figure"}.get(start,
+                                                                          "initial_unstretched")
+        verb = {"en": ("is", "are"), "it": ("è", "sono")}[w.lang][len(springs or ()) > 1]
+        out.append(w.w[key].format(values=", ".join(values),
+                                   springs=f"{', '.join(springs or ())} {verb}"))
     if el.equilibrium == "figure":
         out.append(w.w["equilibrium_figure"])
     return out

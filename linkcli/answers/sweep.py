@@ -790,9 +790,11 @@ def write(sweeper: Sweeper, form: str, every: int, decimals: int | None, out) ->
     return sweeper.issues
 
 
-def _write(blocks, mech, method, names, units, q_unit, issues, form, every, decimals, put):
+def _write(blocks, mech, method, names, units, q_unit, issues, form, every, decimals, put,
+           first="q"):
     """Print ``blocks`` (the rows of the sweep) as CSV, JSON or a table; ``units`` is filled
-    by the time the first block with rows is done, ``issues()`` at the end."""
+    by the time the first block with rows is done, ``issues()`` at the end.  ``first`` names
+    the column of the values swept (the driver's, q, or a parameter's)."""
     if form == "csv":
         fmt = repr if decimals is None else (lambda v: f"{v:.{decimals}f}")
         seen, started = 0, False
@@ -802,13 +804,13 @@ def _write(blocks, mech, method, names, units, q_unit, issues, form, every, deci
             if columns is None:
                 continue
             if not started:         # the units are known once a block has rows
-                put(",".join(_header(names, units, q_unit)) + "\n")
+                put(",".join(_header(names, units, q_unit, first)) + "\n")
                 started = True
             for lo in range(0, columns[0].size, LINES):     # text is bulky: a bit at a time
                 text = [list(map(fmt, c[lo:lo + LINES].tolist())) for c in columns]
                 put("\n".join(map(",".join, zip(*text))) + "\n")
         if not started:             # every assembled row left out: the header alone
-            put(",".join(_header(names, units, q_unit)) + "\n")
+            put(",".join(_header(names, units, q_unit, first)) + "\n")
         return
     with _Spool(1 + len(names)) as spool:
         width = _Widths(1 + len(names), 4 if decimals is None else decimals)
@@ -821,15 +823,15 @@ def _write(blocks, mech, method, names, units, q_unit, issues, form, every, deci
             spool.add(columns)
             if form == "table":
                 width.add(columns)
-        header = _header(names, units, q_unit)
+        header = _header(names, units, q_unit, first)
         if form == "json":
-            _json(spool, mech, method, names, units, q_unit, issues(), put)
+            _json(spool, mech, method, names, units, q_unit, issues(), put, first)
         else:
             _table(spool, header, width, put)
 
 
-def _header(names, units, q_unit) -> list:
-    return [f"q [{q_unit}]"] + [f"{n} [{units.get(n, '')}]" for n in names]
+def _header(names, units, q_unit, first="q") -> list:
+    return [f"{first} [{q_unit}]"] + [f"{n} [{units.get(n, '')}]" for n in names]
 
 
 def _printed(part: Block, names, seen: int, every: int):
@@ -946,13 +948,13 @@ def _table(spool, header, widths, put):
     put("\n")
 
 
-def _json(spool, mech, method, names, units, q_unit, issues, put):
+def _json(spool, mech, method, names, units, q_unit, issues, put, first="q"):
     """json.dumps(..., indent=1) of the sweep, its lists written a block at a time."""
     import json
     marks = [f"\x00linkcli-column-{j}\x00" for j in range(1 + len(names))]
     data = {"file": mech.file, "title": mech.title, "k": mech.k, "method": method,
-            "units": {"q": q_unit, **{n: units.get(n, "") for n in names}},
-            "q": marks[0], "values": {n: m for n, m in zip(names, marks[1:])},
+            "units": {first: q_unit, **{n: units.get(n, "") for n in names}},
+            first: marks[0], "values": {n: m for n, m in zip(names, marks[1:])},
             "issues": [issue.as_dict() for issue in issues]}
     text = json.dumps(data, indent=1)
     for j, mark in enumerate(marks):

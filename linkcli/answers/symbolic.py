@@ -105,7 +105,7 @@ def formulas(doc, k=None, numbers=()):
                          file=mech.file, key="--numbers",
                          hint="parameters: " + (", ".join(sorted(known)) or "none"))
     reading = Symbolic(frozenset(numbers))
-    traced = build(doc, k, reading)
+    traced = build(doc, k, symbolic=reading)
     if mech.elements is None:
         return closures(mech, traced, reading)
     return vibration(mech, traced, reading, numbers)

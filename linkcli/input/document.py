@@ -8,6 +8,9 @@ assembled from a reader per concern: bodies, driver and loads, report and keys; 
 """
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass, field
+
 from linkcli.input import expressions
 from linkcli.errors import InputError
 from linkcli.model.mechanism import Body, Mechanism, Quiz, split_rate
@@ -16,6 +19,9 @@ from linkcli.input.source import Document
 from linkcli.input.report import SECTIONS, AnswersSection
 from linkcli.input.bodies import BodiesSection
 from linkcli.input.contacts import ContactsSection
+from linkcli.input.derived import DerivedSection
+from linkcli.input.find import FindSection
+from linkcli.input.oscillation import OscillationSection
 from linkcli.input.dynamics import DynamicsReader
 from linkcli.input.elements import ElementsReader
 from linkcli.input.loads import LoadsSection
@@ -25,14 +31,15 @@ from linkcli.input.reader import (NAME, UNKNOWN, InputErrors, Reader, _kind, _Sk
 TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points", "links",
             "actuators", "sliders", "driver", "coordinates", "loads", "quantities", "report",
             "keys", "dynamics", "springs", "dampers", "excitation", "initial", "equilibrium",
-            "rolling", "cords", "statement", "quiz"}
+            "rolling", "cords", "statement", "quiz", "find"}
 VIBRATION_KEYS = ("springs", "dampers", "excitation", "initial", "equilibrium")
 
 __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS", "UNKNOWN",
            "NAME", "_Skip"]
 
 
-class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSection):
+class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSection,
+             DerivedSection, OscillationSection, FindSection):
     """The whole document: units, params, frame and points, then each section."""
 
     def parse(self) -> Mechanism:
@@ -76,7 +83,10 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                           "springs": self.element_names(data, "springs"),
                           "dampers": self.element_names(data, "dampers")}
         quantities = self.block(self.quantities, data, pool, loads, driver) or {}
+        design = self.block(self.find, data, quantities)
         report = self.block(self.report, data, quantities, loads, pool) or {}
+        if design is not None:
+            report["design"] = design.names
         keys = self.block(self.keys, data, quantities, loads, pool, report) or ()
         self.check_points_used(pool, bodies, actuators, fixed)
         if self.errors:
@@ -89,7 +99,7 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                          as_drawn=self.k_override is None or self.k_override == data.get("k"),
                          statement=self.block(self.statement, data) or "",
                          quiz=self.block(self.quiz, data, report) or Quiz(),
-                         params={n: v for n, v in self.names.items()})
+                         params={n: v for n, v in self.names.items()}, design=design)
         if "dynamics" in data:
             mech.dynamics = DynamicsReader(self, mech, _Skip).run(data["dynamics"])
         if coordinates:       # after the dynamics: an element may name a rolling disc
@@ -98,6 +108,11 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                 if load.kind == "driver":
                     self.error(("loads", load.name), "a 'driver' load needs a driver; with "
                                "coordinates, give forces, torques or axial loads")
+        mech.param_kinds = {name: kinds.pop() for name, kinds in self.uses.items()
+                            if len(kinds) == 1 and name in self.names and name != "k"}
+        self.expression_dimensions(mech)
+        self.answer_units(mech)
+        self.find_units(mech)
         if self.errors:
             raise InputErrors(self.errors)
         return mech
@@ -172,7 +187,8 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                            hint="rename the parameter" if reason else None)
                 continue
             try:
-                self.names[key] = self.number(value, ("params", key))
+                self.names[key] = self.number(value, ("params", key)) \
+                    if key not in self.overrides else float(self.overrides[key])
             except _Skip:
                 continue
             if self.symbolic is not None:
@@ -216,8 +232,47 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                        "actuator", hint="add it to a link or remove it")
 
 
-def build(doc: Document, k: int | None = None, symbolic=None) -> Mechanism:
-    """The validated mechanism of ``doc`` for matricola digit ``k`` (None: the file's);
-    with ``symbolic`` (an ``input.symbols.Symbolic``) its numbers carry their formulas
-    in the parameters (``model.exact``)."""
-    return Parser(doc, k, symbolic).parse()
+@dataclass(frozen=True)
+class Source:
+    """What a mechanism was built from: the document, the digit asked (None: the file's) and
+    the parameters given other values than the file's (name, value) pairs."""
+
+    doc: Document
+    k: int | None = None
+    params: tuple = ()
+    #: path -> (text, unit kind) of every value the file writes as an expression
+    written: dict = field(default_factory=dict, compare=False)
+
+
+def build(doc: Document, k: int | None = None, params: dict | None = None,
+          symbolic=None) -> Mechanism:
+    """The validated mechanism of ``doc`` for matricola digit ``k`` (None: the file's), its
+    ``params`` given these values (numbers as the file writes them) instead of the file's;
+    with ``symbolic`` (an ``input.symbols.Symbolic``) its numbers carry their formulas in
+    the parameters (``model.exact``)."""
+    params = dict(params or {})
+    if params:
+        declared = doc.data.get("params") if isinstance(doc.data, dict) else None
+        declared = declared if isinstance(declared, dict) else {}
+        for name, value in params.items():
+            if name not in declared:
+                listed = ", ".join(sorted(map(str, declared))[:10]) or "none"
+                raise InputError(f"'{name}' is not a parameter of this file (params: {listed})",
+                                 file=doc.name, key="params", hint="a varied or unknown "
+                                 "value is one of the file's params")
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or \
+                    not math.isfinite(value):
+                raise InputError(f"parameter '{name}' must be a finite number, got {value!r}",
+                                 file=doc.name, key=f"params.{name}")
+    parser = Parser(doc, k, symbolic)
+    parser.overrides = params
+    mech = parser.parse()
+    mech.source = Source(doc, k, tuple(sorted(params.items())), parser.written)
+    return mech
+
+
+def rebuild(mech: Mechanism, params: dict) -> Mechanism:
+    """``mech`` built again from its document, its digit and these ``params`` (on top of the
+    ones it was built with)."""
+    source = mech.source
+    return build(source.doc, source.k, {**dict(source.params), **params})

@@ -57,7 +57,7 @@ class ElementsReader:
         if data.get("excitation") is not None:
             self.block(self.excitation, data["excitation"], ("excitation",), out)
         if data.get("initial") is not None:
-            out.initial = self.block(self.initial, data["initial"], ("initial",)) or {}
+            out.initial = self.block(self.initial, data["initial"], ("initial",), out) or {}
         mode = data.get("equilibrium", "solve")
         if mode not in ("solve", "figure"):
             self.p.error(("equilibrium",), f"equilibrium is 'solve' or 'figure', got {mode!r}",
@@ -73,8 +73,9 @@ class ElementsReader:
 
     def section(self, data, key):
         value = data.get(key)
-        if value is None:
-            return []
+        if value is None or (not value and not isinstance(value, dict)):
+            return []               # an empty section: nothing, [], 0, false or ''
+
         try:
             return list(self.p.mapping(value, (key,)).items())
         except self.skip:
@@ -242,10 +243,14 @@ class ElementsReader:
                                           road=(wavelength, speed))
 
     # free response ---------------------------------------------------------------------
-    def initial(self, value, path) -> dict:
+    def initial(self, value, path, elements) -> dict:
         spec = self.p.mapping(value, path)
         out = {}
+        if "from" in spec:
+            elements.initial_from = self.initial_from(spec["from"], path + ("from",), elements)
         for key, item in spec.items():
+            if key == "from":
+                continue
             name, rate = (key[:-4], True) if isinstance(key, str) and key.endswith("_dot") \
                 else (key, False)
             j = self.coordinate(name, path + (key,))
@@ -255,3 +260,27 @@ class ElementsReader:
             x0, v0 = out.get(j, (0.0, 0.0))
             out[j] = (x0, number) if rate else (number, v0)
         return out
+
+    def initial_from(self, value, path, elements) -> tuple:
+        """``from:`` equilibrium (the default), figure, unstretched (the one spring),
+        {unstretched: SPRING} or {unstretched: [SPRINGS]}: what the initial offsets are
+        measured from."""
+        if value in ("equilibrium", "figure"):
+            return value, None
+        if isinstance(value, dict):
+            spec = self.p.mapping(value, path, {"unstretched"}, ("unstretched",))
+            given = spec["unstretched"]
+            items = given if isinstance(given, list) else [given]
+            names = tuple(self.p.name(n, path + ("unstretched",) + ((i,) if isinstance(
+                given, list) else ()), set(elements.springs), "spring")
+                for i, n in enumerate(items))
+        elif value == "unstretched":
+            if len(elements.springs) != 1:
+                raise self.p.error(path, f"'unstretched' names no spring: the file has "
+                                   f"{len(elements.springs)}",
+                                   hint="write {unstretched: NAME} or {unstretched: [NAMES]}")
+            names = tuple(elements.springs)
+        else:
+            raise self.p.error(path, f"from is equilibrium, figure, unstretched or "
+                               f"{{unstretched: SPRING}}, got {value!r}")
+        return "unstretched", names

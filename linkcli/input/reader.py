@@ -16,6 +16,7 @@ from linkcli.input.source import Document, path_text
 
 UNKNOWN = "unknown"
 NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*\Z")   # \Z: no trailing newline
+WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 BODIES = ("link", "slider", "actuator", "disc")   # named bodies: never the fixed one's name
 
 
@@ -66,6 +67,13 @@ class Reader:
         self.k_override = k
         self.names: dict[str, float] = {}
         self.k: int | None = None
+        #: name -> the unit kinds of the values written as a multiple of it (k: 2*ks)
+        self.uses: dict[str, set] = {}
+        #: parameters given other values than the file's (input.document.build)
+        self.overrides: dict = {}
+        #: path -> (text, unit kind) of every value written as an expression: what depends
+        #: on the parameters (answers.coefficients evaluates them over arrays)
+        self.written: dict = {}
 
     def error(self, path, detail: str, hint: str | None = None):
         self.errors.append(InputError(detail, file=self.doc.name, key=path_text(path) or None,
@@ -97,6 +105,10 @@ class Reader:
             number = expressions.evaluate(value, self.names, self.symbolic is not None)
         except ExpressionError as exc:
             raise self.error(path, exc.detail, exc.hint) from None
+        if isinstance(value, str):
+            self.written[tuple(path)] = (value, kind)
+            if kind is not None:
+                self.note_use(value, kind)
         if self.symbolic is not None:
             return self.symbolic.convert(number, kind, units)
         if kind == "angle":
@@ -104,6 +116,15 @@ class Reader:
         if kind is not None:
             number *= units.factor(kind)
         return number
+
+    def note_use(self, text: str, kind: str):
+        """Record that ``text``, a multiple of one name (``ks``, ``2*L``), is a value of unit
+        ``kind``: a parameter so written is in that unit (model.dimensions.param_unit)."""
+        words = [w for w in WORD.findall(text) if w in self.names]
+        if len(words) == 1:
+            used = expressions.scaled_name(text)
+            if used is not None:
+                self.uses.setdefault(used, set()).add(kind)
 
     def name(self, value, path, pool=None, what="point") -> str:
         if not isinstance(value, str) or not NAME.match(value):

@@ -9,6 +9,8 @@ from linkcli.model.mechanism import (FRAME, LIMITS, VIBRATION, AnswerKey, KeyEnt
                                       limit_refusal, split_rate)
 from linkcli.model.mechanism import Tolerance
 from linkcli.model.units import ANGLE, FORCE, FREQUENCY, LENGTH, TORQUE
+from linkcli.input.derived import EXPR
+from linkcli.input.oscillation import OSCILLATION
 
 SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration", "points")
 #: the kinds of a geometric quantity, each the YAML key that asks for it
@@ -127,6 +129,7 @@ class AnswersSection:
             if q.limit and not self.block(self.limit_of, q, quantities):
                 del quantities[name]
                 self.failed.add(name)
+        self.expression_names(quantities)
         return quantities
 
     def limit_quantity(self, name, value, path) -> Quantity:
@@ -223,10 +226,14 @@ class AnswersSection:
         if name.endswith("dot"):
             raise self.error(path, "quantity names must not end in 'dot'",
                              hint="rates are named automatically: phi1 -> phi1dot, phi1ddot")
+        if isinstance(value, dict) and any(k in value for k in OSCILLATION):
+            return self.oscillation_quantity(name, value, path, pool)
         if isinstance(value, dict) and any(k in value for k in VIBRATION):
-            return self.vibration_quantity(name, value, path, pool)
+            return self.with_part(name, value, path, pool)
         if isinstance(value, dict) and any(k in value for k in LIMITS):
             return self.limit_quantity(name, value, path)
+        if isinstance(value, dict) and EXPR in value:
+            return self.expression_quantity(name, value, path)
         value = self.mapping(value, path, set(GEOMETRY) | {"component", "unit", "point",
                                                            "signed"})
         kinds = [k for k in GEOMETRY if k in value]
@@ -418,7 +425,7 @@ class AnswersSection:
 
     def vibration_quantity(self, name, value, path, pool) -> Quantity:
         """A quantity of the vibration analysis (see docs/vibrations.md)."""
-        value = self.mapping(value, path, set(VIBRATION) | {"unit", "time"})
+        value = self.mapping(value, path, set(VIBRATION) - set(OSCILLATION) | {"unit", "time"})
         kinds = [k for k in VIBRATION if k in value]
         if len(kinds) != 1:
             raise self.error(path, "give exactly one of " + ", ".join(kinds))
@@ -522,6 +529,12 @@ class AnswersSection:
         order = {"position": 0, "velocity": 1, "acceleration": 2, "statics": 0,
                  "vibration": 0}[section]
         base = split_rate(name)
+        if base[0] in quantities and quantities[base[0]].kind == "design":
+            raise self.error(path, f"'{name}' is an unknown of 'find': it is listed in the "
+                             "report's Design section by itself", hint="remove it from here")
+        if base[0] in quantities and quantities[base[0]].kind == EXPR:
+            self.rate_of(name, quantities[base[0]], base[1], path)
+            return True             # an expression: in the section its reader expects
         vibration = name in quantities and quantities[name].kind in VIBRATION
         if section == "vibration" or vibration:
             if not vibration or section != "vibration":
@@ -564,6 +577,11 @@ class AnswersSection:
         if order <= quantity.rates:
             return
         has = {0: "no rates", 1: f"one rate ({quantity.name}dot)"}[quantity.rates]
+        if quantity.kind == EXPR:
+            raise self.error(path, f"'{name}' is not defined: the expression {quantity.name} "
+                             f"has {has}, the rates that every name it reads has",
+                             hint=f"ask for '{quantity.name}' itself, or read names that have "
+                             "the rate (a load and a limit have none)")
         raise self.error(path, f"'{name}' is not a defined quantity rate: "
                          f"{_kind_text(quantity.kind)} has {has}",
                          hint={"speed": "the rate of a speed is the tangential acceleration; "

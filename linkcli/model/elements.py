@@ -102,6 +102,9 @@ class Elements:
     supports: dict = field(default_factory=dict)     # name -> Support
     frequency: float | None = None                   # Omega (rad/s) of the excitation
     initial: dict = field(default_factory=dict)      # coordinate index -> (dq0, dq'0)
+    #: what the initial offsets are measured from: ('equilibrium', None), ('figure', None)
+    #: or ('unstretched', spring names): where those springs have their free measures
+    initial_from: tuple = ("equilibrium", None)
     equilibrium: str = "solve"                       # 'solve' from the figure | 'figure'
 
     @property

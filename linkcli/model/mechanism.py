@@ -202,10 +202,19 @@ class Quantity:
     signed: bool = False
     line: int | None = field(default=None, compare=False)
     span: tuple | None = None      # a limit's driver range (from, to), display units
+    #: an expression quantity's (kind 'expr', the text in ``a``): the Dimension of its unit
+    #: (model.units), and the rates it has (those every name it reads has)
+    dimension: object = None
+    derived: int | None = None
+    #: of a complex vibration answer, its 'real' or 'imaginary' part (None: its magnitude);
+    #: of the characteristic polynomial's coefficient, 'monic' (divided by the leading one)
+    form: str | None = None
 
     @property
     def rates(self) -> int:
         """How many rates the quantity has: 2 (NAMEdot and NAMEddot), 1 or 0."""
+        if self.derived is not None:
+            return self.derived
         if self.kind in ("q", "x", "y", "angle", "length", "along", "normal_to", "relative",
                          "rotation", "between"):
             return 2
@@ -229,13 +238,17 @@ LIMITS = ("maximum", "minimum", "at_maximum", "at_minimum", "stroke", "time_rati
           "stroke_time")
 
 #: the report's sections of named quantities, in the order of the answer sheet
-REPORT_SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration")
+REPORT_SECTIONS = ("design", "position", "velocity", "acceleration", "statics", "vibration")
 
 #: quantity kinds of the vibration analysis (each is also the YAML key that asks for it)
 VIBRATION = ("natural_frequency", "damped_frequency", "damping_ratio", "mode_shape",
              "mass_matrix", "stiffness_matrix", "damping_matrix", "equilibrium",
              "spring_force", "amplitude", "phase", "transmissibility", "force_amplitude",
-             "free_response", "forcing_frequency")
+             "free_response", "forcing_frequency",
+             # what vibration chapters print besides (input.oscillation)
+             "natural_period", "damped_period", "frequency_ratio", "eigenvalue",
+             "characteristic", "receptance", "peak_frequency", "peak_amplitude",
+             "beat_period", "largest")
 
 
 @dataclass(frozen=True)
@@ -307,6 +320,12 @@ class Mechanism:
     quiz: Quiz = field(default_factory=Quiz)
     params: dict = field(default_factory=dict)    # the file's named numbers for this k
     elements: Elements | None = None   # springs, dampers, forcing: None when absent
+    #: the unit kind of each parameter written on its own as a value of one kind (k: ks)
+    param_kinds: dict = field(default_factory=dict)
+    #: what it was built from, to build it again with other parameters (input.document.Source)
+    source: object = None
+    #: a design question (``find:``, model.design.Design), None when absent
+    design: object = None
 
     def __post_init__(self):
         if not self.coordinates:

@@ -323,3 +323,95 @@ def _composed(units, dim) -> tuple[str, float]:
     if down:
         text += "/" + (down[0] if len(down) == 1 else "(" + " ".join(down) + ")")
     return text, factor
+
+
+#: units written glued (N s, N m s) and the units of energy and power
+_GLUED = {"Ns": (FORCE_DIM * TIME_DIM, 1.0), "Nms": (FORCE_DIM * LENGTH_DIM * TIME_DIM, 1.0),
+          "Nmm": (FORCE_DIM * LENGTH_DIM, 1e-3), "Nmms": (FORCE_DIM * LENGTH_DIM * TIME_DIM, 1e-3),
+          # energy and power, which no kind of the file's units holds
+          "J": (FORCE_DIM * LENGTH_DIM, 1.0), "kJ": (FORCE_DIM * LENGTH_DIM, 1e3),
+          "W": (FORCE_DIM * LENGTH_DIM / TIME_DIM, 1.0),
+          "kW": (FORCE_DIM * LENGTH_DIM / TIME_DIM, 1e3)}
+
+
+def _unit_candidates(name: str) -> list:
+    """Every (Dimension, SI factor) a unit name of the tables may mean ('lb': a mass or a
+    force), the glued N s and N m s, '1' and '%' as pure numbers."""
+    if name in RATIOS:
+        return [(NONE, RATIOS[name])]
+    found = [(DIMENSIONS[kind], table[name]) for kind, table in KINDS.items() if name in table]
+    if name in _GLUED:
+        found.append(_GLUED[name])
+    return list(dict.fromkeys(found))
+
+
+def _token_candidates(token: str) -> list:
+    """The meanings of one factor of a composed unit: a unit name, with ``^p`` a power."""
+    base, _, power = token.partition("^")
+    try:
+        p = float(power) if power else 1
+    except ValueError:
+        return []
+    try:
+        return [(dim ** p, factor ** p) for dim, factor in _unit_candidates(base)]
+    except InputError:          # a power that is not a whole number of halves
+        return []
+
+
+#: units that count cycles (turns) where the tables count radians: in an expression a value
+#: in them is in cycles per second, as SI writes frequencies (1 Hz = 1/s, 1 rpm = 1/60 1/s)
+CYCLES = ("Hz", "rpm", "rev/s")
+
+
+def cycles(name: str) -> int:
+    """The power of cycles in the unit ``name`` (1 for Hz or rpm, -1 for 1/Hz, 0 for rad/s)."""
+    text = str(name).strip()
+    if text in CYCLES:
+        return 1
+    up, _, down = text.partition("/")
+    count = 0
+    for sign, part in ((1, up), (-1, down.strip("()"))):
+        for token in part.split():
+            base, _, power = token.partition("^")
+            if base in CYCLES:
+                count += sign * (int(power) if power.isdigit() else 1)
+    return count
+
+
+def parse_unit(name, expected=None):
+    """(Dimension, SI factor) of a unit written with the tables' names, alone or as products
+    and quotients of them, as :func:`show` writes composed units (``kg m``, ``mm/s^2``,
+    ``N s/rad``, ``1/(in deg)``) and files write units of their own; None for a name it
+    cannot read.  Where a name means two things ('lb' a mass or a force), the meaning
+    whose dimension agrees with ``expected`` (a Dimension) is taken."""
+    import itertools
+    if not isinstance(name, str) or len(name) > 80:
+        return None
+    text = name.strip()
+    whole = _unit_candidates(text)
+    if not whole:
+        up, slash, down = text.partition("/")
+        if slash and down.startswith("(") and down.endswith(")"):
+            down = down[1:-1]
+        if "/" in down or "(" in up or "(" in down or not up.strip() \
+                or (slash and not down.strip()):
+            return None
+        factors = [(t, 1) for t in up.split() if t != "1"] + \
+            [(t, -1) for t in down.split()]
+        options = []
+        for token, sign in factors:
+            found = _token_candidates(token)
+            if not found:
+                return None
+            options.append([(dim ** sign, factor ** sign) for dim, factor in found])
+        whole = []
+        for combination in itertools.product(*options):
+            dim, factor = NONE, 1.0
+            for d, f in combination:
+                dim, factor = dim * d, factor * f
+            whole.append((dim, factor))
+    if expected is not None:
+        agreeing = [w for w in whole if w[0].agrees(expected)]
+        if agreeing:
+            return agreeing[0]
+    return whole[0] if whole else None

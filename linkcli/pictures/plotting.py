@@ -202,6 +202,27 @@ def plot(mech, sweep: str, names, output: str, dpi: int = 100, notify=None) -> l
     return result.issues
 
 
+def plot_vary(mech, vary: str, names, output: str, dpi: int = 100, notify=None) -> list:
+    """Answers ``names`` against one of the file's parameters over ``vary``
+    ('NAME=FROM:TO:STEPS'), one panel each; values without answers are left blank and
+    reported to ``notify``."""
+    from linkcli.answers.vary import parse_vary, vary as solve_vary
+    check_output(output, IMAGE_FORMATS)
+    check_names(mech, names)
+    name, values = parse_vary(vary)
+    result = solve_vary(mech, name, values, list(dict.fromkeys(names)))
+    _tell(result.issues, notify)
+    fig = figure(8.0, 1.2 + 2.4 * len(names), dpi)
+    axes = fig.subplots(len(names), 1, sharex=True, squeeze=False)[:, 0]
+    for ax, answer, color in zip(axes, names, COLORS * len(names)):
+        _panel(ax, mech, values, result, answer, color)
+    axes[-1].set_xlabel(f"{name} [{result.unit}]" if result.unit else name)
+    axes[0].set_title(_wrap(mech.title))
+    fig.tight_layout()
+    _save_figure(fig, output)
+    return result.issues
+
+
 def _tell(issues, notify=None):
     """Each report's text to ``notify``, by default to standard error as 'linkcli: ...'."""
     if notify is None:

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from linkcli.answers.quantities.oscillation import initial_state
 from linkcli.answers.quantities.vibration import FREQUENCY_DIM, Answer, analyse, \
     coordinate_dim, phase, shape_text, shown
 from linkcli.errors import InputError, SolveError
@@ -280,13 +281,11 @@ def free(mech, span: str, names, output: str, dpi: int = 100) -> None:
     _require_vibration(mech, "a time response")
     analysis = analyse(mech)
     lin = analysis.lin
-    initial = mech.elements.initial
-    if not initial:
+    if not mech.elements.initial and mech.elements.initial_from[0] == "equilibrium":
         raise InputError("a time response starts from 'initial:'", file=mech.file,
                          key="initial", hint="e.g. initial: {theta: 2, theta_dot: 0}")
     t = _times(lin, span)
-    x0 = np.array([initial.get(j, (0.0, 0.0))[0] for j in lin.free])
-    v0 = np.array([initial.get(j, (0.0, 0.0))[1] for j in lin.free])
+    x0, v0 = initial_state(analysis)
     linear = vib.free_response(lin, x0, v0, t)
     nonlinear = vib.simulate(lin, x0, v0, t)
     picked = _coordinates(mech, lin, names)

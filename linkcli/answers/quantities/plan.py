@@ -56,6 +56,8 @@ def needed_orders(mech, names):
     """The highest order of rates (0, 1 or 2) solving ``names`` takes; a rate a quantity has
     not (the rate of an acceleration) is refused here, before anything is solved."""
     orders = {0}
+    from linkcli.answers.quantities.expressions import expand
+    names, _ = expand(mech, names)
     for name in names:
         base, order = split_rate(name)
         quantity = mech.quantities.get(base)
@@ -105,7 +107,8 @@ def require_driver(mech, what: str) -> None:
     if mech.elements is not None or len(mech.coordinates) > 1:
         raise InputError(f"{what} varies the driver, and this file declares coordinates "
                          "(a vibration problem) instead", file=mech.file,
-                         hint="use 'linkcli solve', or 'linkcli plot' with --frf, --modes or "
+                         hint="use 'linkcli solve', 'linkcli sweep --vary NAME=FROM:TO:STEPS' "
+                         "(a parameter), or 'linkcli plot' with --vary, --frf, --modes or "
                          "--free")
 
 
@@ -132,8 +135,11 @@ def plan_for(mech, names=None, method="closed", tol=None) -> "Plan":
     plans = _PLANS.setdefault(mech, {})
     plan = plans.get(key)
     if plan is None:
-        plan = plans[key] = Plan(mech, report_names(mech) if names is None else list(names),
-                                 method, tol)
+        names = report_names(mech) if names is None else list(names)
+        from linkcli.answers.quantities.expressions import Derived, expand
+        solve, exprs = expand(mech, names)
+        plan = plans[key] = Plan(mech, names, method, tol) if not exprs else \
+            Derived(names, plan_for(mech, solve, method, tol), exprs)
     return plan
 
 
@@ -407,6 +413,10 @@ def value_of(mech, name, kin, loads, context=None):
     base_name, order = split_rate(name)
     quantity = mech.quantities[base_name]
     units = mech.units
+    if quantity.kind == "design":           # a solved parameter: the file's value
+        from linkcli.model.dimensions import param_unit_name
+        value = float(mech.params[base_name])
+        return value + 0 * np.asarray(kin.q, dtype=float), param_unit_name(mech, base_name)
     if quantity.kind in JOINT_FORCES:
         return force_value(quantity, kin, context or Context(mech, None, kin))
     if quantity.kind in TEXTBOOK:

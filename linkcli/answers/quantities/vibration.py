@@ -24,22 +24,17 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.answers.quantities import collect
+from linkcli.answers.quantities import collect, oscillation
 from linkcli.errors import InputError, ModeError, SolveError
 from linkcli.forces import vibration as vib
-from linkcli.forces.equilibrium import free_coordinates
+from linkcli.input.oscillation import OSCILLATION
 from linkcli.forces.lagrange import Lagrangian
 from linkcli.kinematics import jacobian as jac
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import VIBRATION, split_rate
-from linkcli.model.units import ANGLE_DIM, DIMENSIONS, Dimension, FORCE_DIM, LENGTH_DIM, \
-    MASS_DIM, NONE, TIME_DIM
-
-FREQUENCY_DIM = DIMENSIONS["frequency"]
-#: per matrix, the dimension of an entry between two lengths; each angle coordinate brings
-#: its lever arm (a length), and stiffness and damping are per radian (N/rad, Nm/rad)
-MATRIX_DIMS = {"mass_matrix": MASS_DIM, "stiffness_matrix": FORCE_DIM / LENGTH_DIM,
-               "damping_matrix": FORCE_DIM * TIME_DIM / LENGTH_DIM}
+from linkcli.model.dimensions import FREQUENCY_DIM, coordinate_dim, generalised_force_dim, \
+    matrix_dim, of_quantity
+from linkcli.model.units import ANGLE_DIM, DIMENSIONS, Dimension, FORCE_DIM
 
 
 @dataclass(frozen=True)
@@ -62,24 +57,6 @@ def shown(units, answer: Answer, unit: str | None = None) -> tuple[float, str]:
         value = value % turn
         value = 0.0 if value > turn * (1 - 1e-12) else value
     return float(value), name
-
-
-def coordinate_dim(mech, j) -> Dimension:
-    """The dimension of coordinate j: an angle or a length."""
-    return ANGLE_DIM if mech.coordinates[j].base == "angle" else LENGTH_DIM
-
-
-def generalised_force_dim(mech, j) -> Dimension:
-    """The dimension of the generalised force of coordinate j: a torque for an angle (the
-    work per radian), a force for a length."""
-    return FORCE_DIM * LENGTH_DIM if mech.coordinates[j].base == "angle" else FORCE_DIM
-
-
-def matrix_dim(kind, mech, i, j) -> Dimension:
-    """The dimension of entry (i, j) of the mass, stiffness or damping matrix."""
-    angles = [mech.coordinates[c].base for c in (i, j)].count("angle")
-    dim = MATRIX_DIMS[kind] * LENGTH_DIM ** angles
-    return dim / ANGLE_DIM if angles and kind != "mass_matrix" else dim
 
 
 @dataclass
@@ -164,7 +141,8 @@ def evaluate(mech, names, result):
                                  "and the excitation")
             result.values[name], result.units[name] = shown(mech.units, answer, quantity.unit)
     result.analysis = analysis
-    result.cautions = list(analysis.lin.eq.cautions) + road_lift_off(analysis)
+    result.cautions = list(analysis.lin.eq.cautions) + road_lift_off(analysis) + \
+        analysis.cache.get("cautions", [])
     return result
 
 
@@ -248,40 +226,29 @@ def answer_of(analysis: Analysis, quantity) -> Answer:
 FREQUENCIES = ("natural_frequency", "damped_frequency", "forcing_frequency")
 
 
+#: the kind of unit an answer is shown in where its dimension is shared by several
+SHOWN = {"natural_period": "time", "damped_period": "time", "beat_period": "time",
+         "peak_frequency": "frequency", "phase": "angle",
+         **{kind: "frequency" for kind in FREQUENCIES}}
+
+
 def dimension_of(mech, quantity) -> tuple:
     """(Dimension, kind of unit it is shown in or None) of a vibration quantity, from the
-    file alone: what ``Units.show`` needs to decide its unit."""
-    kind = quantity.kind
-    if kind in FREQUENCIES:
-        return FREQUENCY_DIM, "frequency"
-    if kind == "damping_ratio":
-        return NONE, None
-    if kind == "phase":
-        return ANGLE_DIM, "angle"
-    if kind.endswith("_matrix"):
-        return matrix_dim(kind, mech, _coordinate(mech, quantity.a),
-                          _coordinate(mech, quantity.b)), None
-    if kind == "mode_shape":
-        reference = free_coordinates(mech)[vib.REFERENCE]
-        return (coordinate_dim(mech, _coordinate(mech, quantity.b))
-                / coordinate_dim(mech, reference)), None
-    if kind == "spring_force":
-        return _element_force(mech.elements.springs[quantity.a])
-    if kind == "force_amplitude":
-        return _elements_force(mech, quantity)
-    dim = LENGTH_DIM if quantity.component is not None else \
-        coordinate_dim(mech, _coordinate(mech, quantity.a))
-    if kind == "transmissibility":
-        supports = mech.elements.supports.values()
-        if supports:
-            support = max(supports, key=lambda item: abs(item.amplitude))
-            dim = dim / coordinate_dim(mech, support.coordinate)
-    return dim, None
+    file alone (model.dimensions): what ``Units.show`` needs to decide its unit."""
+    dim = of_quantity(mech, quantity)
+    kind = SHOWN.get(quantity.kind)
+    if quantity.kind in ("spring_force", "largest") and quantity.a in mech.elements.springs:
+        kind = _element_force(mech.elements.springs[quantity.a])[1]
+    elif quantity.kind == "force_amplitude":
+        kind = _elements_force(mech, quantity)[1]
+    return dim, kind
 
 
 def si_value(analysis: Analysis, quantity) -> float:
     """One vibration quantity in SI (rad/s, m, rad, N, kg ...)."""
     kind = quantity.kind
+    if kind in OSCILLATION or quantity.form is not None:
+        return oscillation.si_value(analysis, quantity)
     if kind in FREQUENCIES:
         return _frequency(analysis, quantity)
     if kind == "damping_ratio":
@@ -303,11 +270,7 @@ def si_value(analysis: Analysis, quantity) -> float:
         return float(lin.eq.terms.forces[quantity.a])
     if kind == "free_response":
         j = _free_index(analysis, quantity.a)
-        x0 = np.zeros(len(lin.free))
-        v0 = np.zeros(len(lin.free))
-        for c, (dx, dv) in mech.elements.initial.items():
-            if c in lin.free:
-                x0[lin.free.index(c)], v0[lin.free.index(c)] = dx, dv
+        x0, v0 = oscillation.initial_state(analysis)
         return float(vib.free_response(lin, x0, v0, [quantity.time])[0, j])
     return _steady(analysis, quantity)
 
@@ -565,7 +528,7 @@ def explain_lines(mech) -> list:
         found = analysis.modes()
     except SolveError as exc:
         return lines + ["", f"  {exc.detail}"]
-    return lines + _mode_lines(analysis, found)
+    return lines + _mode_lines(analysis, found) + oscillation.explain_lines(analysis)
 
 
 def shape_text(analysis, k) -> str:

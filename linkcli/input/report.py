@@ -24,7 +24,10 @@ ON_BODY = ("least_speed", "least_speed_at")
 PROJECTIONS = ("along", "normal_to")
 ANGULAR = ("angle", "rotation", "between")
 COMPONENTS = {"relative": ("x", "y"), "instant_centre": ("x", "y"),
-              "reaction": ("x", "y", "magnitude"), "slider_force": ("normal", "friction")}
+              "reaction": ("x", "y", "magnitude", "along", "normal"),
+              "slider_force": ("normal", "friction")}
+#: the components of a joint force that are projections on an axis (``axis:``)
+PROJECTED = ("along", "normal")
 #: quantities whose value is itself a rate: a speed is listed with the velocities (its
 #: rate with the accelerations), an acceleration with the accelerations
 LEVEL = {"speed": 1, "relative_speed": 1, "acceleration": 2, "tangential_acceleration": 2,
@@ -72,6 +75,18 @@ def _bases(name: str) -> list[str]:
     """Every name of which ``name`` may be a rate (or which it is)."""
     return [split_base(name, order) for order in RATES
             if name.endswith(SUFFIX[order]) and len(name) > len(SUFFIX[order])]
+
+
+def _halves(bodies: dict) -> dict:
+    """The halves of each actuator as bodies a pin acts on: NAME.cylinder holds the
+    actuator's first point, NAME.rod its second (``bodies`` as :meth:`raw_bodies`)."""
+    out = {}
+    for name, (kind, points) in bodies.items():
+        if kind == "actuator":
+            ends = points if points is not None and len(points) == 2 else (None, None)
+            out[name + ".cylinder"] = ("cylinder", None if ends[0] is None else (ends[0],))
+            out[name + ".rod"] = ("rod", None if ends[1] is None else (ends[1],))
+    return out
 
 
 def _same(q: Quantity, automatic: Quantity) -> bool:
@@ -228,7 +243,7 @@ class AnswersSection:
         if isinstance(value, dict) and any(k in value for k in LIMITS):
             return self.limit_quantity(name, value, path)
         value = self.mapping(value, path, set(GEOMETRY) | {"component", "unit", "point",
-                                                           "signed"})
+                                                           "signed", "axis"})
         kinds = [k for k in GEOMETRY if k in value]
         if len(kinds) != 1:
             if len(kinds) > 1 and set(kinds) <= set(GEOMETRY[:5]):
@@ -262,6 +277,10 @@ class AnswersSection:
                                  f"{value['signed']!r}")
         if "point" in value and kind not in PROJECTIONS:
             raise self.error(path + ("point",), "'point' is for along and normal_to")
+        if "axis" in value and not (kind == "reaction" and value.get("component") in PROJECTED):
+            raise self.error(path + ("axis",), "'axis' is for the along and normal components "
+                             "of a reaction", hint="{reaction: [P, BODY], component: normal, "
+                             "axis: OTHER}")
         if kind in GEOMETRY[5:]:
             line = self.doc.line(path)
             return dataclasses.replace(self.textbook_quantity(name, kind, value, path, pool),
@@ -354,14 +373,49 @@ class AnswersSection:
         point = self.name(point, where + (0,), pool)
         fixed = set(self.doc.data.get("frame") or {}) if isinstance(
             self.doc.data.get("frame"), dict) else set()
-        pins = dict(bodies, **{FRAME: ("frame", tuple(sorted(fixed)))})
-        body = self.name(body, where + (1,), pins, "body")
+        pins = dict(bodies, **_halves(bodies), **{FRAME: ("frame", tuple(sorted(fixed)))})
+        body = self.body_name(body, where + (1,), pins)
         points = pins[body][1]
         if points is not None and point not in points:
             raise self.error(where + (0,), f"undefined point '{point}' on body '{body}'",
                              hint=f"{'its points' if body != FRAME else 'fixed points'}: "
                              + (", ".join(points) or "none"))
-        return Quantity(name, kind, point, body, component=component, of=pins[body][0])
+        axis = None
+        if component in PROJECTED:
+            axis = self.axis(value.get("axis"), path + ("axis",), pins, pool, body)
+        return Quantity(name, kind, point, body, component=component, of=pins[body][0],
+                        axis=axis)
+
+    def body_name(self, value, path, pins) -> str:
+        """A body a pin acts on: a link, slider or actuator, an actuator's half
+        (NAME.cylinder, NAME.rod) or the frame."""
+        if isinstance(value, str) and value in pins:
+            return value
+        if isinstance(value, str) and "." in value:
+            halves = sorted(n for n in pins if "." in n)
+            raise self.error(path, f"undefined body '{value}'", hint="an actuator's halves are "
+                             "NAME.cylinder and NAME.rod: " + (", ".join(halves) or "none"))
+        return self.name(value, path, {n for n in pins if "." not in n}, "body")
+
+    def axis(self, value, path, pins, pool, body) -> tuple:
+        """The direction a joint force is projected on: ('body', NAME) the axis of a body
+        (``axis: NAME``; by default the body the force acts on), ('points', P, Q) the vector
+        P -> Q (``axis: [P, Q]``) or ('angle', radians) a fixed direction
+        (``axis: {angle: A}``, counter-clockwise from +x)."""
+        if value is None:
+            if body == FRAME:
+                raise self.error(path[:-1], "the frame has no axis of its own: give the "
+                                 "direction of the component", hint="axis: BODY, axis: [P, Q] "
+                                 "or axis: {angle: A}")
+            return ("body", body)
+        if isinstance(value, list):
+            return ("points",) + self.pair(value, path, pool)
+        if isinstance(value, dict):
+            spec = self.mapping(value, path, {"angle"}, ("angle",))
+            return ("angle", self.number(spec["angle"], path + ("angle",), "angle",
+                                         self.file_units))
+        name = self.body_name(value, path, {n: v for n, v in pins.items() if n != FRAME})
+        return ("body", name)
 
     def two_names(self, arg, where, form):
         if not isinstance(arg, list) or len(arg) != 2:

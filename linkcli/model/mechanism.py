@@ -173,8 +173,10 @@ class Quantity:
       it is given, ``c`` then saying what b is, as ``of`` does for a), and
       'instant_centre_distance' from it to point ``b``;
     - 'reaction': the force of the pin at point ``a`` on body ``b`` (``of``: its kind,
-      or 'frame'), ``component`` x, y or magnitude; 'slider_force' of slider ``a``,
-      ``component`` normal or friction;
+      'cylinder' or 'rod' for an actuator's half, or 'frame'), ``component`` x, y,
+      magnitude, or along / normal (left) to ``axis``: ('body', NAME) a body's axis,
+      ('points', P, Q) the vector P -> Q, ('angle', radians) a fixed direction (None: the
+      axis of body ``b``); 'slider_force' of slider ``a``, ``component`` normal or friction;
     - 'velocity_ratio': d(a)/dq of the quantity named ``a``;
     - 'least_speed', 'least_speed_at': of the line through points ``a`` and ``b`` of one
       body, the least speed of its points and where it is (distance from a along a->b);
@@ -199,6 +201,7 @@ class Quantity:
     signed: bool = False
     line: int | None = field(default=None, compare=False)
     span: tuple | None = None      # a limit's driver range (from, to), display units
+    axis: tuple | None = None      # a joint force's direction of projection (see above)
 
     @property
     def rates(self) -> int:

@@ -1,12 +1,15 @@
 """Loads and joint forces as answers: the unknown load by virtual work (with d'Alembert's
 inertia, gravity and friction where the file has masses), the force of a pin on a body and a
-slider's normal and friction forces from the Newton-Euler joint forces (N)."""
+slider's normal and friction forces from the Newton-Euler joint forces (N).  A pin's force F
+is given by its x and y, its magnitude, or its components F . u along and F . (i u) normal
+(left) to an axis u (a body's, a vector's or a fixed direction)."""
 from __future__ import annotations
 
 import numpy as np
 
 from linkcli.answers.quantities.textbook import located
 from linkcli.errors import InputError
+from linkcli.forces import motion
 from linkcli.forces.statics import unknown_load
 from linkcli.model.mechanism import split_rate
 from linkcli.model.units import FORCE
@@ -62,4 +65,26 @@ def joint_force(quantity, context):
         return np.real(force)
     if quantity.component == "y":
         return np.imag(force)
+    if quantity.component in ("along", "normal"):
+        u = axis_direction(mech, quantity.axis, reactions.kin.pos, key[1])
+        if quantity.component == "normal":
+            u = 1j * u
+        return (np.conj(u) * force).real
     return np.abs(force)
+
+
+def axis_direction(mech, axis, pos, body):
+    """The unit vector u a joint force is projected on (``Quantity.axis``): a body's axis
+    (a link's first -> second point, a slider's guide, an actuator's a -> b), the vector
+    P -> Q, or a fixed direction; ``body`` is the pin's body, for an actuator named whole."""
+    kind = axis[0]
+    if kind == "angle":
+        return np.exp(1j * axis[1])
+    if kind == "points":
+        z = pos[axis[2]] - pos[axis[1]]
+    else:
+        name = axis[1]
+        if name in mech.actuators:
+            name = body if body.startswith(name + ".") else name + ".cylinder"
+        z = motion.axis_vector(mech, name, pos)
+    return z / np.abs(z)

@@ -76,8 +76,9 @@ def _load_actions(mech, kin, load, value):
             (act.name + ".cylinder", -u * value, pos[act.b], 0.0)]
 
 
-def residuals(mech, kin, r):
-    """Largest force and moment imbalance of any body or pin, relative to the forces' size."""
+def residuals(mech, kin, r, extra=()):
+    """Largest force and moment imbalance of any body or pin, relative to the forces' size;
+    ``extra``: further (target, force, point, moment) actions (contacts, cords)."""
     dyn = mech.dynamics
     force = {}
     moment = {}
@@ -100,6 +101,8 @@ def residuals(mech, kin, r):
     for name, load in mech.loads.items():
         for target, f, at, m in _load_actions(mech, kin, load, r.loads[name]):
             add(target, f, at, m)
+    for target, f, at, m in extra:
+        add(target, f, at, m)
     if dyn is not None:
         for mb in dyn.bodies.values():
             g, _, a = motion.rigid_point(mech, mb.body, mb.center, kin.pos, kin.vel, kin.acc)

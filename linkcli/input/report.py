@@ -16,7 +16,7 @@ GEOMETRY = ("angle", "length", "x", "y", "load", "speed", "acceleration",
             "tangential_acceleration", "normal_acceleration", "along", "normal_to", "relative",
             "relative_speed", "relative_acceleration", "rotation", "between", "instant_centre",
             "instant_centre_distance", "reaction", "slider_force", "velocity_ratio",
-            "least_speed", "least_speed_at")
+            "least_speed", "least_speed_at", "tension", "contact_force")
 OF_POINT = ("speed", "acceleration", "tangential_acceleration", "normal_acceleration")
 OF_PAIR = ("relative", "relative_speed", "relative_acceleration")
 #: of the line through two points of one body: its point of least speed and that speed
@@ -25,7 +25,7 @@ PROJECTIONS = ("along", "normal_to")
 ANGULAR = ("angle", "rotation", "between")
 COMPONENTS = {"relative": ("x", "y"), "instant_centre": ("x", "y"),
               "reaction": ("x", "y", "magnitude", "along", "normal"),
-              "slider_force": ("normal", "friction")}
+              "slider_force": ("normal", "friction"), "contact_force": ("normal", "friction")}
 #: the components of a joint force that are projections on an axis (``axis:``)
 PROJECTED = ("along", "normal")
 #: quantities whose value is itself a rate: a speed is listed with the velocities (its
@@ -37,7 +37,7 @@ EITHER = ("instant_centre", "instant_centre_distance", "velocity_ratio", "least_
 #: the limits of the motion that are of a position quantity (its dead centres)
 STROKES = ("stroke", "time_ratio", "stroke_time")
 #: forces, listed with the statics
-FORCES = ("load", "reaction", "slider_force")
+FORCES = ("load", "reaction", "slider_force", "tension", "contact_force")
 #: the quantities a velocity ratio may be of: those whose rate is linear in the velocities
 RATIO_OF = ("q", "x", "y", "angle", "length", "along", "normal_to", "relative", "rotation",
             "between")
@@ -256,7 +256,8 @@ class AnswersSection:
         if unit is not None and not isinstance(unit, str):
             raise self.error(path + ("unit",), f"unit is a unit name, got {unit!r}")
         table = {"angle": ANGLE, "rotation": ANGLE, "between": ANGLE, "load": None,
-                 "reaction": FORCE, "slider_force": FORCE}.get(kind, LENGTH)
+                 "reaction": FORCE, "slider_force": FORCE, "tension": FORCE,
+                 "contact_force": FORCE}.get(kind, LENGTH)
         if kind == "load" and isinstance(value["load"], str) and value["load"] in loads:
             load = loads[value["load"]]   # the unit the results use for this load
             torque = load.kind == "torque" or load.kind == "driver" and (
@@ -362,6 +363,8 @@ class AnswersSection:
             self.body(body, where + (0,), spinning, kind)
             return Quantity(name, kind, body, self.name(point, where + (1,), pool),
                             of=spinning[body][0])
+        if kind in ("tension", "contact_force"):
+            return Quantity(name, kind, self.contact(arg, where, kind), component=component)
         if kind == "slider_force":
             sliders = sorted(n for n, (what, _) in bodies.items() if what == "slider")
             self.name(arg, where, what="slider")
@@ -416,6 +419,18 @@ class AnswersSection:
                                          self.file_units))
         name = self.body_name(value, path, {n: v for n, v in pins.items() if n != FRAME})
         return ("body", name)
+
+    def contact(self, arg, where, kind) -> str:
+        """A cord of ``cords:`` (a tension) or a rolling contact of ``rolling:``."""
+        data = self.doc.data if isinstance(self.doc.data, dict) else {}
+        key = "cords" if kind == "tension" else "rolling"
+        names = set(data.get(key) or {}) if isinstance(data.get(key), dict) else set()
+        self.name(arg, where, what="contact")
+        if arg not in names:
+            what = "cord" if kind == "tension" else "rolling contact"
+            raise self.error(where, f"'{arg}' is not a {what} of '{key}:'",
+                             hint=f"{key}: " + (", ".join(sorted(names)) or "none"))
+        return arg
 
     def two_names(self, arg, where, form):
         if not isinstance(arg, list) or len(arg) != 2:

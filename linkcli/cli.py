@@ -425,15 +425,28 @@ def plot(file, sweep, frf, modes, free, names, k, output):
 @click.argument("file")
 @K_OPTION
 @click.option("-o", "--output", required=True, help="Picture to write (.png, .svg or .pdf).")
-def draw(file, k, output):
+@click.option("--exam", is_flag=True, help="The exam's figure: the data only, no answer.")
+@click.option("--lang", type=click.Choice(["it", "en"]), default="en", show_default=True,
+              help="Numbers of --exam with a decimal comma (it) or point (en).")
+@click.option("--method", type=click.Choice(["closed", "newton"]), default="closed",
+              show_default=True, help="How positions are solved (--exam).")
+def draw(file, k, output, exam, lang, method):
     """Draw FILE at its driver value: links, sliders, pivots, the vector polygon z_i, loads.
 
+    With --exam, the figure of the exam's statement instead: the mechanism with its data
+    (lengths, guides, known loads, the driver's value and sense), nothing solved.
+
     \b
-    Example:
+    Examples:
       linkcli draw mechanisms/padova-2020-07.yaml -o mechanism.png
+      linkcli draw mechanisms/padova-2020-07.yaml --exam --lang it -o esame.png
     """
-    from linkcli.pictures.plotting import draw as make
     _not_an_input(output, file)
+    if exam:
+        from linkcli.pictures.exam import draw_exam
+        draw_exam(_load(file, k), output, lang=lang, method=method)
+        return
+    from linkcli.pictures.plotting import draw as make
     make(_load(file, k), output)
 
 
@@ -766,11 +779,15 @@ def entry():  # pragma: no cover - console script
               help="Decimals of the answers (default: the file's report.decimals).")
 @click.option("--tolerance", type=float, default=None,
               help="Moodle: absolute tolerance of every answer (default: the file's "
-              "quiz.tolerance, or half a unit of the last decimal).")
+              "quiz.tolerance, or half a unit of the last decimal), widened where the "
+              "file's key prints a value with fewer decimals or a tolerance.")
 @click.option("--no-figure", is_flag=True, help="Leave the figure out.")
+@click.option("--method", type=click.Choice(["closed", "newton"]), default="closed",
+              show_default=True, help="Moodle: how positions are solved (newton for a "
+              "class-III group).")
 @click.option("-o", "--output", required=True, help="File to write.")
 @click.option("--force", is_flag=True, help="Replace the output file if it exists.")
-def export(file, target, k_text, lang, decimals, tolerance, no_figure, output, force):
+def export(file, target, k_text, lang, decimals, tolerance, no_figure, method, output, force):
     """Export FILE for a course: a Moodle quiz with every digit's variant, or a worked
     solution to hand out.
 
@@ -790,11 +807,14 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, output, f
     if target == "moodle":
         from linkcli.exports.moodle import export as make
         text = make(doc, ks, decimals=decimals, tolerance=tolerance, lang=lang,
-                    figure=not no_figure)
+                    figure=not no_figure, method=method)
     else:
         if ks is not None and len(ks) > 1:
             raise InputError("a worked solution is for one digit", key="--k",
                              hint="give one digit, e.g. --k 3")
+        if method != "closed":
+            raise InputError("a worked solution follows the closed-form groups", key="--method",
+                             hint="--method newton is for --to moodle")
         from linkcli.exports import worked
         from linkcli.input.document import build
         mech = build(doc, ks[0] if ks else None)

@@ -62,6 +62,21 @@ class SolveError(LinkcliError):
     exit_code = 3
 
 
+class EquilibriumError(SolveError):
+    """No static equilibrium to linearise about, or preloads it cannot determine.
+
+    ``reason`` names the case: 'figure' (the figure is not an equilibrium), 'stalled' (the
+    search from the figure stopped short of one), 'unbounded' (the potential energy keeps
+    falling beyond reach of the figure), 'undetermined' or 'inconsistent' (preloads chosen
+    for equilibrium); ``residual`` is the largest generalised force left, as a fraction of
+    its load scale, where one applies."""
+
+    def __init__(self, detail: str, *, reason: str, residual: float | None = None, **kw):
+        super().__init__(detail, **kw)
+        self.reason = reason
+        self.residual = residual
+
+
 class MobilityError(SolveError):
     """Grübler's count is not 1."""
 

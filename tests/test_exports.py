@@ -55,8 +55,10 @@ def test_padova_2020_02_has_one_question_per_digit_with_batch_values():
         assert len(boxes) == len(names)
         for name, box in zip(names, boxes):
             assert box.qtype == "NUMERICAL"
-            (answer,) = box.answers
-            assert answer.fraction == 100
+            answer = box.answers[0]
+            assert all(a.fraction == 100 for a in box.answers)
+            assert len(box.answers) == (2 if name.startswith("phi") and
+                                        not name.endswith("dot") else 1)
             expected = round(rows[k][1 + columns.index(name)], 1)
             assert answer.value == pytest.approx(expected, abs=1e-9), (k, name)
             assert answer.tolerance == pytest.approx(0.05)
@@ -65,8 +67,8 @@ def test_padova_2020_02_has_one_question_per_digit_with_batch_values():
 def test_points_per_section_become_integer_weights():
     doc = load_file(os.path.join(MECH, "padova-2023-01.yaml"))
     _, (q,) = _questions(moodle.export(doc, None, figure=False))
-    assert float(q.find("defaultgrade").text) == 15
     _, boxes = _boxes(q)
+    assert float(q.find("defaultgrade").text) == sum(b.weight for b in boxes)
     mech = linkcli.load(os.path.join(MECH, "padova-2023-01.yaml")).model
     shares = {}
     for section in ("position", "velocity", "statics"):
@@ -186,3 +188,87 @@ def test_worked_solution_renders_in_a_headless_browser(tmp_path):
     subprocess.run([browser, *flags, f"--screenshot={shot}", "--window-size=1100,2600",
                     page.as_uri()], capture_output=True, timeout=120)
     assert shot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def _with_points(points: str, extra: str = "") -> str:
+    return HOSTILE.replace('title: "<script>', 'title: "x').replace(
+        "report: {position: [phi]}", "loads: {F: {type: force, at: C, x: 10}, M: {type: driver, "
+        "value: unknown}}\nreport: {position: [phi], velocity: [phidot], statics: [M]}\n"
+        f"quiz: {{points: {points}{extra}}}")
+
+
+@pytest.mark.parametrize("points, weights", [
+    ("{position: 9, velocity: 9, statics: 2}", {"position": 9, "velocity": 9, "statics": 2}),
+    ("{position: 1, velocity: 1, statics: 2}", {"position": 1, "velocity": 1, "statics": 2}),
+])
+def test_whole_points_one_per_box_are_the_weights(points, weights):
+    """Points that fall whole on each box are the weights, and the mark is their sum."""
+    mech = linkcli.loads(_with_points(points)).model
+    assert moodle.weights(mech) == (weights, sum(weights.values()))
+
+
+@pytest.mark.parametrize("points", ["{position: 0.5, velocity: 0.5, statics: 1}",
+                                    "{position: 1, velocity: 2, statics: 3.3}",
+                                    "{position: 33.33, velocity: 33.33, statics: 33.34}",
+                                    "{position: 7, velocity: 0.1, statics: 1}"])
+def test_other_points_become_the_smallest_weights_that_keep_their_ratio(points):
+    """Each section's share of the mark within 0.1 % of its share of the points, and no
+    smaller mark does it (every smaller triple of whole weights tried: one box each)."""
+    import itertools
+    mech = linkcli.loads(_with_points(points)).model
+    given = mech.quiz.points
+    target = [given[s] / sum(given.values()) for s in ("position", "velocity", "statics")]
+    chosen, mark = moodle.weights(mech)
+    found = [chosen[s] for s in ("position", "velocity", "statics")]
+    assert sum(found) == mark
+
+    def keeps(w):
+        return all(abs(x / sum(w) - t) <= 0.001 + 1e-12 for x, t in zip(w, target))
+    assert keeps(found)
+    smaller = [w for w in itertools.product(range(1, mark), repeat=3)
+               if sum(w) < mark and keeps(w)]
+    assert smaller == []
+
+
+def test_points_must_cover_every_section_of_the_report():
+    mech = linkcli.loads(_with_points("{position: 9, statics: 2}")).model
+    with pytest.raises(InputError, match="no points to the report's velocity section"):
+        moodle.weights(mech)
+
+
+def test_tolerances_are_written_with_all_their_digits():
+    """:g wrote six digits (0.0123457 for 0.0123456789); a tolerance longer than Moodle's
+    14 digits is rounded up, never down."""
+    from decimal import Decimal
+    doc = load_text(HOSTILE.replace("report:", "quiz: {tolerance: 0.0123456789}\nreport:"),
+                    "t.yaml")
+    _, (q,) = _questions(moodle.export(doc, None, figure=False))
+    _, (box,) = _boxes(q)
+    assert {a.raw_text.split(":")[1] for a in box.answers} == {"0.0123456789"}
+    assert moodle.written(Decimal("0.12345678901234567")) == "0.12345678901235"
+    assert moodle.written(Decimal("5E-13")) == "0.0000000000005"
+
+
+@pytest.mark.parametrize("lang, words, number", [("it", "virgola decimale", "12,5"),
+                                                 ("en", "decimal point", "12.5")])
+def test_the_question_says_which_decimal_separator_the_boxes_read(lang, words, number):
+    doc = load_file(os.path.join(MECH, "padova-2020-07.yaml"))
+    _, (q,) = _questions(moodle.export(doc, None, lang=lang, figure=False))
+    text = html.unescape(q.find("questiontext/text").text)
+    assert words in text and f"({number})" in text
+
+
+def test_draw_exam_and_export_newton_from_the_command_line(tmp_path):
+    pytest.importorskip("matplotlib")
+    from linkcli.cli import main
+    picture = tmp_path / "esame.png"
+    assert main(["draw", os.path.join(MECH, "triad-class3.yaml"), "--exam", "--method",
+                 "newton", "-o", str(picture)]) == 0
+    assert picture.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    quiz = tmp_path / "triad.xml"
+    assert main(["export", os.path.join(MECH, "triad-class3.yaml"), "--to", "moodle",
+                 "--no-figure", "-o", str(quiz)]) == 3       # the closed form refuses a triad
+    assert main(["export", os.path.join(MECH, "triad-class3.yaml"), "--to", "moodle",
+                 "--method", "newton", "--no-figure", "-o", str(quiz)]) == 0
+    _, (q,) = _questions(quiz.read_text(encoding="utf-8"))
+    assert len(_boxes(q)[1]) == 15

@@ -288,13 +288,25 @@ def _run(tmp_path, text, *args):
 
 
 def test_unstable_equilibrium_is_named_with_its_eigenvalue(tmp_path, capsys):
+    """Gravity pointing up and the pendulum drawn hanging: the figure is an equilibrium, a
+    maximum of V, and it is kept and named as unstable (not left for the upright one)."""
     inverted = CASES["pendulum"][0].replace("gravity: 9.81", "gravity: {g: 9.81, angle: 90}") \
-        .replace("points: {A: [0.3, -1.16]}", "points: {A: [0.3, -1.16]}")
-    path, code = _run(tmp_path, inverted.replace("th: {equilibrium: theta}", "th: {equilibrium: theta}"))
+        .replace("points: {A: [0.3, -1.16]}", "points: {A: [0, -1.2]}")
+    path, code = _run(tmp_path, inverted)
     err = capsys.readouterr().err
-    # gravity pointing up: the hanging position is an equilibrium, and an unstable one
     assert code == 3
-    assert "unstable" in err and "negative eigenvalue" in err and "Traceback" not in err
+    assert "unstable (a maximum of the potential energy)" in err
+    assert "negative eigenvalue" in err and "Traceback" not in err
+
+
+def test_a_pendulum_let_go_below_an_upward_gravity_settles_upright(tmp_path):
+    """Drawn off the hanging position with gravity pointing up, the pendulum is not in
+    equilibrium: let go, it swings up to the stable upright position, theta = 90 deg, with
+    omega^2 = m g (L/2) / (m L^2 / 3) as hanging under the usual gravity."""
+    inverted = CASES["pendulum"][0].replace("gravity: 9.81", "gravity: {g: 9.81, angle: 90}")
+    values = linkcli.loads(inverted).solve().values
+    assert float(values["th"]) == pytest.approx(90.0, abs=1e-9)
+    assert float(values["w1"]) == pytest.approx(CASES["pendulum"][1][0], rel=1e-9)
 
 
 def test_coordinate_without_mass_is_named(tmp_path, capsys):
@@ -311,8 +323,8 @@ def test_no_equilibrium_is_reported_with_the_residual(tmp_path, capsys):
         .replace("dynamics:", "loads: {push: {type: force, at: C, x: 10}}\ndynamics:")
     path, code = _run(tmp_path, text)
     err = capsys.readouterr().err
-    assert code == 3
-    assert "no static equilibrium found from the figure" in err and "x: " in err
+    assert code == 3      # nothing holds x against the push: V falls without bound along x
+    assert "no static equilibrium within" in err and "keeps falling along x" in err
 
 
 def test_figure_that_is_not_an_equilibrium_is_refused(tmp_path, capsys):

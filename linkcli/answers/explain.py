@@ -22,6 +22,7 @@ def explain(mech) -> str:
     if len(mech.coordinates) > 1 or mech.elements is not None:
         for c in mech.coordinates:
             lines.append(f"  coordinate {c.name} = {_what(c)}")
+        lines += [f"  {line}" for line in getattr(solver, "substitution", lambda: [])()]
     else:
         lines.append(f"  driver q = {_what(mech.driver)}")
     step = 0

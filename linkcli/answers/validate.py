@@ -68,9 +68,9 @@ def validate_file(path: str, k: int | None = None) -> Validation:
     if errors:
         result.problems, result.exit_code = _lines(errors, digits), 2
         return result
-    from linkcli.kinematics.topology import analyse
+    from linkcli.kinematics.solvers import solver_for
     try:
-        topology = analyse(mech)
+        topology = solver_for(mech).topology
     except StructureError as exc:   # valid, if the numerical method solves it
         return _newton_only(result, mech, exc, name)
     except LinkcliError as exc:

@@ -1,22 +1,43 @@
 """A Moodle XML question bank: one embedded-answers (Cloze) question per digit k.
 
-Each question states the problem with that digit's data (title, the file's
-``statement``, the numbers), embeds the figure, and asks every reported
-quantity in one NUMERICAL box, in the order and sections of the exam's table:
+Each question states the problem with that digit's data: the title, the file's
+``statement`` (added to, not instead of, the data), every datum of the model in words
+(:mod:`linkcli.answers.statement`), the exam's figure (:mod:`linkcli.pictures.exam`:
+the data drawn, no answer), how to write the answers, and one NUMERICAL box per
+reported quantity, in the order and sections of the exam's table::
 
-    {w:NUMERICAL:=value:tolerance}
+    {w:NUMERICAL:=value:tolerance~=equivalent angle:tolerance}
 
-with the value at the file's decimals, the tolerance half a unit of the last
-printed decimal unless ``quiz.tolerance`` (or the caller) says otherwise, and
-integer weights w in proportion to ``quiz.points`` per section (Moodle's
-Cloze weights are whole numbers; the question's grade is the sum of the
-points).  The questions sit in a category named after the file.  Text from
-the file is escaped for HTML, and braces become entities so that nothing but
-the answer boxes reads as Cloze; the XML writer escapes the rest.
+written for the way Moodle grades them (question/type/multianswer and
+question/type/numerical of Moodle 4 and 5):
 
-Moodle's formats: the XML question format (``question type="cloze"``, the
-``questiontext`` with its ``file`` elements, ``@@PLUGINFILE@@`` links) and the
-embedded answers syntax, as Moodle's question importer reads them.
+- the question's mark is the sum of its boxes' weights (Moodle does not read
+  ``defaultgrade`` for this type; it is written equal to the sum).  The weights are
+  whole numbers in the ratio of ``quiz.points`` per section: the points themselves
+  when every section's points divide among its boxes, else the smallest weights that
+  keep each section's share of the mark within SHARE of the points' share, with a mark
+  of at most MAX_MARK (Moodle stores a mark below 100 000);
+- a response r scores the fraction of the first answer a with
+  ``|r - a| <= tol + 1e-14 max(1, |a|)``, a and tol kept to 14 significant digits.
+  A value or tolerance that needs more digits, or whose tolerance Moodle would widen
+  by more than WIDEN of itself, is refused with the decimals that work;
+- an angle box (an angle, a rotation, the angle between two vectors: what ``check``
+  compares modulo a turn) has a second full-credit answer, the value less one turn
+  (or plus one turn for a negative value): 330 and -30 deg both score;
+- the tolerance is half a unit of the last decimal, ``quiz.tolerance`` or
+  ``--tolerance``, widened where the file's key prints the value with fewer decimals or
+  with a tolerance, so that every printed value ``check`` accepts scores: the key's
+  bound (half a unit of its last printed decimal, or its tolerance) plus half a unit of
+  the box's last decimal;
+- the response's decimal separator is that of the student's Moodle language (Italian:
+  a comma, with '.' between thousands; English: a point, with ','): the question says
+  which one its language expects;
+- the figure is a file of the question, linked as ``@@PLUGINFILE@@/`` and its name
+  URL-encoded.
+
+Text from the file is escaped for HTML, and braces become entities so that nothing but
+the answer boxes reads as Cloze; the XML writer escapes the rest.  The questions sit in
+a category named after the file.
 """
 from __future__ import annotations
 
@@ -24,17 +45,44 @@ import base64
 import html
 import math
 import os
+import urllib.parse
 import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from decimal import ROUND_CEILING, Decimal
 from fractions import Fraction
 
 import numpy as np
 
 from linkcli.answers.formats import HEADINGS, fmt
-from linkcli.answers.quantities import report_names
+from linkcli.answers.quantities import angle_period, report_names
 from linkcli.answers.sheet import evaluate
+from linkcli.answers.statement import data_lines, describe, number
 from linkcli.errors import InputError, LinkcliError, SolveError
 from linkcli.input.document import build
 from linkcli.model.mechanism import REPORT_SECTIONS
+
+SHARE = Fraction(1, 1000)       # a section's share of the mark: within 0.1 % of its points'
+MAX_MARK = 10_000               # the largest mark written (Moodle's field holds < 100 000)
+PHP_DIGITS = 14                 # significant digits of Moodle's floats
+SLACK = 1e-14                   # Moodle widens each interval by SLACK max(1, |a|) ...
+WIDEN = 0.01                    # ... which must stay within 1 % of the tolerance
+
+WORDS = {
+    "en": {"data": "Data", "figure": "Figure",
+           "separator": "Write each result with a decimal point (12.5), without a thousands "
+                        "separator, to {places}.",
+           "places": ("no decimal places", "one decimal place", "{n} decimal places"),
+           "angles": "An angle may be given in [0, {turn}) or as the equivalent angle one turn "
+                     "less ({example}).",
+           "or": "or"},
+    "it": {"data": "Dati", "figure": "Figura",
+           "separator": "Scrivere ogni risultato con la virgola decimale (12,5), senza "
+                        "separatore delle migliaia, con {places}.",
+           "places": ("nessuna cifra decimale", "una cifra decimale", "{n} cifre decimali"),
+           "angles": "Un angolo si può dare in [0, {turn}) o come l'angolo equivalente di un "
+                     "giro in meno ({example}).",
+           "or": "o"},
+}
 
 
 def text(value) -> str:
@@ -42,98 +90,260 @@ def text(value) -> str:
     return html.escape(str(value)).replace("{", "&#123;").replace("}", "&#125;")
 
 
-def tolerance_for(mech, decimals: int, given: float | None) -> float:
-    if given is not None:
-        if not given > 0:
-            raise InputError(f"a tolerance must be positive, got {given!r}", key="--tolerance")
-        return given
-    if mech.quiz.tolerance is not None:
-        return mech.quiz.tolerance
-    return 0.5 * 10.0 ** (-decimals)
+# --- marks --------------------------------------------------------------------------------------
+def weights(mech) -> tuple[dict, int]:
+    """({section: the whole weight of each of its boxes}, the question's mark = their sum).
 
-
-def weights(mech) -> tuple[dict, float]:
-    """({section: integer weight of each of its boxes}, the question's total points)."""
+    One per box without ``quiz.points``; the points per box when they are whole numbers
+    (the mark is then the sum of the points); else the smallest weights whose sections
+    keep their share of ``quiz.points`` within SHARE (see the module)."""
     sections = [s for s in REPORT_SECTIONS if mech.report.get(s)]
     counts = {s: len(mech.report[s]) for s in sections}
-    points = mech.quiz.points or {s: counts[s] for s in sections}
-    per_box = {s: Fraction(points.get(s, 0)).limit_denominator(1000) / counts[s]
-               for s in sections}
-    scale = math.lcm(*(f.denominator for f in per_box.values())) if per_box else 1
-    out = {s: int(f * scale) for s, f in per_box.items()}
-    return out, float(sum(points.get(s, 0) for s in sections))
+    points = mech.quiz.points
+    if not points:
+        return {s: 1 for s in sections}, sum(counts.values())
+    missing = [s for s in sections if s not in points]
+    if missing:
+        raise InputError(f"quiz.points gives no points to the report's {', '.join(missing)} "
+                         f"section{'s' if len(missing) > 1 else ''}", file=mech.file,
+                         key="quiz.points", hint="give every section of the report its "
+                         "points, or leave quiz.points out for one point per answer")
+    exact = {s: Fraction(repr(float(points[s]))) / counts[s] for s in sections}
+    if all(f.denominator == 1 for f in exact.values()):
+        chosen = {s: int(f) for s, f in exact.items()}
+        if _mark(chosen, counts) <= MAX_MARK:
+            return chosen, _mark(chosen, counts)
+    total = sum(exact[s] * counts[s] for s in sections)
+    shares = {s: exact[s] * counts[s] / total for s in sections}
+    for scale in range(1, MAX_MARK + 1):
+        chosen = {s: round(scale * shares[s] / counts[s]) for s in sections}
+        mark = _mark(chosen, counts)
+        if mark > MAX_MARK:
+            break
+        if min(chosen.values()) >= 1 and all(
+                abs(Fraction(chosen[s] * counts[s], mark) - shares[s]) <= SHARE
+                for s in sections):
+            return chosen, mark
+    small = min(sections, key=lambda s: shares[s] / counts[s])
+    shown = ", ".join(f"{s}: {points[s]:g}" for s in sections)
+    raise InputError(f"quiz.points ({shown}) cannot be kept by whole weights of the answer "
+                     f"boxes with a mark of at most {MAX_MARK}, each section's share within "
+                     f"{float(SHARE) * 100:g} %", file=mech.file, key="quiz.points",
+                     hint=f"the {counts[small]} boxes of {small} share "
+                     f"{float(shares[small]) * 100:.2g} % of the points: give each box at "
+                     f"least 1/{MAX_MARK} of them, or leave quiz.points out for one point per "
+                     "box")
 
 
-def cloze_number(value: float, decimals: int) -> str:
-    """A number as Moodle's NUMERICAL reads it (plain decimal, no thousands separator)."""
-    return fmt(value, decimals)
+def _mark(chosen, counts) -> int:
+    return sum(chosen[s] * counts[s] for s in chosen)
 
 
-def data_lines(mech) -> list[str]:
-    """The problem's numbers as the exams list them: parameters, links, driver, loads."""
-    units = mech.units
-    l_unit, lf = units.display("length", 0)
-    lines = []
-    params = {n: v for n, v in mech.params.items() if n != "k"}
-    if params:
-        lines.append(", ".join(f"{n} = {v:.6g}" for n, v in params.items()))
-    lengths = []
-    for body in mech.bodies.values():
-        if body.kind == "link" and len(body.points) == 2:
-            a, b = body.points
-            lengths.append(f"{a}{b} = {abs(body.local[b] - body.local[a]) / lf:.6g} {l_unit}")
-    if lengths:
-        lines.append(", ".join(lengths))
-    fixed = [f"{p} = ({z.real / lf:.6g}, {z.imag / lf:.6g})" for p, z in mech.fixed.items()
-             if not p.startswith("~")]
-    if fixed:
-        lines.append(", ".join(fixed) + f" {l_unit}")
-    if mech.elements is None:
-        d = mech.driver
-        base = d.base
-        u0, f0 = units.display(base, 0)
-        u1, f1 = units.display(base, 1)
-        lines.append(f"q = {d.value / f0:.6g} {u0}, q' = {d.rate / f1:.6g} {u1}" +
-                     (f", q'' = {d.accel / units.display(base, 2)[1]:.6g} "
-                      f"{units.display(base, 2)[0]}" if d.accel else ""))
-    known = [load for load in mech.loads.values() if load.value is not None]
-    for load in known:
-        kind = mech.load_unit_kind(load)
-        lines.append(f"{load.name} = {load.value / units.factor(kind):.6g} {units.names[kind]}")
-    return lines
+# --- numbers as Moodle stores them --------------------------------------------------------------
+def _decimal(value: float) -> Decimal:
+    return Decimal(repr(float(value)))
 
 
-def question_html(mech, result, decimals, tolerance, box_weights, lang, figure_name):
-    words = HEADINGS[lang]
+def half_unit(places: int) -> Decimal:
+    """Half a unit of the last of ``places`` decimals."""
+    return Decimal(5).scaleb(-places - 1)
+
+
+def significant(number_text: str) -> int:
+    """Significant digits written in a plain or scientific number ('250.0' has 4)."""
+    mantissa = number_text.lower().split("e")[0].lstrip("-+").replace(".", "")
+    return max(len(mantissa.lstrip("0")), 1)
+
+
+def written(tolerance: Decimal) -> str:
+    """A tolerance with all its digits, rounded up to 14 significant digits if longer."""
+    tolerance = tolerance.normalize()
+    if len(tolerance.as_tuple().digits) > PHP_DIGITS:
+        quantum = Decimal(1).scaleb(tolerance.adjusted() - PHP_DIGITS + 1)
+        tolerance = tolerance.quantize(quantum, rounding=ROUND_CEILING).normalize()
+    return format(tolerance, "f")
+
+
+def quiz_tolerance(mech, places: int, given: float | None) -> Decimal:
+    """``given`` (--tolerance), else ``quiz.tolerance``, else half a unit of the last
+    decimal."""
+    if given is not None:
+        if not (given > 0 and math.isfinite(given)):
+            raise InputError(f"a tolerance must be positive, got {given!r}", key="--tolerance")
+        return _decimal(given)
+    if mech.quiz.tolerance is not None:
+        return _decimal(mech.quiz.tolerance)
+    return half_unit(places)
+
+
+def key_bound(mech, name: str, file_k, value: float, places: int) -> Decimal | None:
+    """How far from the computed value ``check`` accepts a printed key of ``name``, when
+    that reaches past a box of ``places`` decimals: a key printed with fewer decimals (half
+    a unit of its last one) or with a tolerance (absolute, or relative to the printed
+    value; for another digit's key, to ``value``).  None when the box needs no widening.
+    The keys of this digit decide; without one, those of other digits."""
+    entries = [(file_k if key.k is None else key.k, e) for key in mech.keys
+               for e in key.entries if e.name == name and not e.wrong
+               and not isinstance(e.value, tuple)]
+    here = [(k, e) for k, e in entries if k == mech.k] or entries
+    bounds = []
+    for k, e in here:
+        bound = half_unit(e.decimals)
+        if e.tolerance is not None:
+            t = _decimal(e.tolerance.value)
+            if e.tolerance.relative:
+                t *= abs(_decimal(e.value if k == mech.k else value))
+            bound = max(bound, t)
+        if e.tolerance is not None or e.decimals < places:
+            bounds.append(bound)
+    return max(bounds) if bounds else None
+
+
+@dataclass
+class Box:
+    """One NUMERICAL box: its quantity, weight, answers (the value first) and tolerance."""
+
+    name: str
+    weight: int
+    answers: list
+    tolerance: Decimal
+
+    def cloze(self) -> str:
+        tol = written(self.tolerance)
+        return "{" + f"{self.weight}:NUMERICAL:" + "~".join(f"={a}:{tol}" for a in self.answers) \
+            + "}"
+
+    def refusal(self) -> str | None:
+        """Why Moodle would not grade this box as written, or None."""
+        for a in self.answers:
+            if significant(a) > PHP_DIGITS:
+                return f"'{self.name}' = {a} needs {significant(a)} significant digits"
+            if float(self.tolerance) * WIDEN < SLACK * max(1.0, abs(float(a))):
+                return (f"'{self.name}' = {a} has a tolerance of {written(self.tolerance)}, "
+                        f"under {1 / WIDEN:g} times Moodle's rounding of the value")
+        return None
+
+
+def box(mech, result, name, weight, places, tolerance, file_k) -> Box:
+    """The box of ``name``: its value at ``places`` decimals, the equivalent angle of an
+    angle, the tolerance widened to the printed keys ``check`` accepts."""
+    value = float(np.asarray(result.values[name]).reshape(-1)[0])
+    shown = fmt(value, places)
+    answers = [shown]
+    period = angle_period(mech, name, result.units[name])
+    if period is not None:
+        stated = float(shown)
+        answers.append(fmt(stated - period if stated >= 0 else stated + period, places))
+    bound = key_bound(mech, name, file_k, value, places)
+    if bound is not None:
+        tolerance = max(tolerance, bound + half_unit(places))
+    return Box(name, weight, answers, tolerance)
+
+
+def _stored_places(boxes_of, places) -> int | None:
+    """The most decimals (below ``places``) at which every box is graded as written."""
+    for fewer in range(places - 1, -1, -1):
+        if all(b.refusal() is None for b in boxes_of(fewer)):
+            return fewer
+    return None
+
+
+# --- the question -------------------------------------------------------------------------------
+def plugin_link(path: str) -> str:
+    """``@@PLUGINFILE@@/`` and the file's path, each part URL-encoded as Moodle does."""
+    return "@@PLUGINFILE@@/" + "/".join(urllib.parse.quote(part, safe="")
+                                        for part in path.split("/"))
+
+
+def instructions(mech, result, places, lang) -> str:
+    """How to write the answers: the decimal separator, the decimals, and for angles the
+    two equivalent values that score."""
+    words = WORDS[lang]
+    counted = words["places"][min(places, 2)].format(n=places)
+    lines = [words["separator"].format(places=counted)]
+    units = {result.units[n] for n in report_names(mech)
+             if angle_period(mech, n, result.units[n]) is not None}
+    if units:
+        turn, example = ("360", (330, -30)) if "deg" in units else \
+            ("2π", (5.5, 5.5 - 2 * math.pi))
+        shown = [number(round(v, 2), lang) for v in example]
+        lines.append(words["angles"].format(turn=turn, example=f"{shown[0]} {words['or']} "
+                                                                f"{shown[1]}"))
+    return "<p>" + " ".join(text(line) for line in lines) + "</p>"
+
+
+def question_html(mech, result, places, boxes, lang, figure_name) -> str:
+    words = WORDS[lang]
     parts = [f"<p><b>{text(mech.title)}</b></p>"]
     if mech.statement:
         parts += [f"<p>{text(p.strip())}</p>" for p in mech.statement.split("\n\n") if p.strip()]
-    data = data_lines(mech)
-    if data:
-        parts.append("<ul>" + "".join(f"<li>{text(line)}</li>" for line in data) + "</ul>")
+    parts.append(f"<p><b>{words['data']}</b></p><ul>" +
+                 "".join(f"<li>{text(line)}</li>" for line in data_lines(mech, lang)) + "</ul>")
     if figure_name:
-        parts.append(f'<p><img src="@@PLUGINFILE@@/{figure_name}" alt="{text(mech.title)}" '
+        parts.append(f'<p><img src="{plugin_link(figure_name)}" alt="{text(words["figure"])}" '
                      'style="max-width: 100%"></p>')
+    parts.append(instructions(mech, result, places, lang))
+    headings = HEADINGS[lang]
     for section in REPORT_SECTIONS:
         names = mech.report.get(section) or []
         if not names:
             continue
-        heading = words["dynamics" if section == "statics" and mech.dynamics is not None
-                       and mech.elements is None else section]
-        rows = []
-        for name in names:
-            value = float(np.asarray(result.values[name]).reshape(-1)[0])
-            box = (f"{{{box_weights[section]}:NUMERICAL:="
-                   f"{cloze_number(value, decimals)}:{tolerance:g}}}")
-            rows.append(f"<tr><td>{text(name)}</td><td>{box}</td>"
-                        f"<td>{text(result.units[name])}</td></tr>")
+        heading = headings["dynamics" if section == "statics" and mech.dynamics is not None
+                           and mech.elements is None else section]
+        rows = [f"<tr><td>{text(b.name)}</td><td>{text(describe(mech, b.name, lang))}</td>"
+                f"<td>{b.cloze()}</td><td>{text(result.units[b.name])}</td></tr>"
+                for b in boxes if b.name in names]
         parts.append(f"<p><b>{text(heading)}</b></p><table>{''.join(rows)}</table>")
     return "".join(parts)
 
 
-def export(doc, ks, decimals=None, tolerance=None, lang="it", figure=True) -> str:
-    """The Moodle XML text for the document ``doc`` at digits ``ks`` (None: the file's own)."""
-    from linkcli.exports.figure import figure_bytes
+def _solved(mech, method):
+    try:
+        return evaluate(mech) if method == "closed" else evaluate(mech, method=method)
+    except LinkcliError as exc:
+        cls = SolveError if isinstance(exc, SolveError) else InputError
+        raise cls(_digit(mech) + exc.detail, file=exc.file, key=exc.key, line=exc.line,
+                  hint=exc.hint) from None
+
+
+def _digit(mech) -> str:
+    """'digit k = 3: ' before a message about one question, '' for a file without k."""
+    return f"digit k = {mech.k}: " if mech.k is not None else ""
+
+
+def _boxes(mech, result, places, tolerance, file_k) -> list:
+    chosen, _ = weights(mech)
+    base = quiz_tolerance(mech, places, tolerance)
+    return [box(mech, result, name, chosen[section], places, base, file_k)
+            for section in REPORT_SECTIONS for name in mech.report.get(section) or []]
+
+
+def _checked(mech, result, places, tolerance, file_k, decimals) -> list:
+    """The boxes, or a refusal naming the box Moodle would not grade as written."""
+    boxes = _boxes(mech, result, places, tolerance, file_k)
+    for b in boxes:
+        reason = b.refusal()
+        if reason is None:
+            continue
+        fewer = _stored_places(lambda p: _boxes(mech, result, p, tolerance, file_k), places)
+        key = "--decimals" if decimals is not None else "report.decimals"
+        hint = (f"use {key} {fewer} or fewer" if fewer is not None and tolerance is None
+                and mech.quiz.tolerance is None else "give a larger tolerance or fewer "
+                "decimals")
+        raise InputError(f"{_digit(mech)}{reason}; Moodle keeps {PHP_DIGITS} significant "
+                         f"digits and widens each tolerance by {SLACK:g} of the value, so it "
+                         "would not grade this box as written",
+                         file=mech.file, key=key, hint=hint)
+    return boxes
+
+
+def export(doc, ks, decimals=None, tolerance=None, lang="it", figure=True,
+           method="closed") -> str:
+    """The Moodle XML text for the document ``doc`` at digits ``ks`` (None: the file's own).
+
+    ``figure``: True for the exam's figure, False for none, or a function of the
+    mechanism giving the PNG's bytes.  ``method``: 'closed' or 'newton' (a class-III
+    group needs Newton)."""
     base = build(doc, None)
     if not report_names(base):
         raise InputError("the file has no report to ask", file=base.file, key="report",
@@ -142,37 +352,40 @@ def export(doc, ks, decimals=None, tolerance=None, lang="it", figure=True) -> st
         raise InputError(f"the file does not depend on k (it sets no default 'k'), so the "
                          f"digits {', '.join(str(k) for k in ks)} would be one question",
                          file=base.file, key="--k", hint="leave --k out for one question")
+    picture = figure if callable(figure) else _exam_picture(lang, method) if figure else None
     quiz = ET.Element("quiz")
     category = ET.SubElement(ET.SubElement(quiz, "question", type="category"), "category")
     name = os.path.splitext(os.path.basename(base.file))[0]
     ET.SubElement(category, "text").text = f"$course$/top/linkcli/{name}"
     for k in (ks if ks is not None else [None]):
         mech = build(doc, k)
-        try:
-            result = evaluate(mech)
-        except LinkcliError as exc:
-            cls = SolveError if isinstance(exc, SolveError) else InputError
-            raise cls(f"digit k = {mech.k}: {exc.detail}", file=exc.file, key=exc.key,
-                      line=exc.line, hint=exc.hint) from None
+        result = _solved(mech, method)
         places = mech.report.get("decimals", 1) if decimals is None else decimals
-        box_weights, total = weights(mech)
-        tol = tolerance_for(mech, places, tolerance)
+        boxes = _checked(mech, result, places, tolerance, base.k, decimals)
         figure_name = f"{name}-k{mech.k}.png" if mech.k is not None else f"{name}.png"
         q = ET.SubElement(quiz, "question", type="cloze")
         ET.SubElement(ET.SubElement(q, "name"), "text").text = \
             f"{mech.title}" + (f" (k = {mech.k})" if mech.k is not None else "")
         qt = ET.SubElement(q, "questiontext", format="html")
         ET.SubElement(qt, "text").text = question_html(
-            mech, result, places, tol, box_weights, lang, figure_name if figure else None)
-        if figure:
+            mech, result, places, boxes, lang, figure_name if picture else None)
+        if picture:
             f = ET.SubElement(qt, "file", name=figure_name, path="/", encoding="base64")
-            f.text = base64.b64encode(figure_bytes(mech, "png")).decode("ascii")
+            f.text = base64.b64encode(picture(mech)).decode("ascii")
         gf = ET.SubElement(q, "generalfeedback", format="html")
         ET.SubElement(gf, "text").text = ""
         ET.SubElement(q, "penalty").text = "0.3333333"
         ET.SubElement(q, "hidden").text = "0"
         ET.SubElement(q, "idnumber").text = f"{name}-k{mech.k}" if mech.k is not None else name
-        ET.SubElement(q, "defaultgrade").text = f"{total:g}"
+        ET.SubElement(q, "defaultgrade").text = str(sum(b.weight for b in boxes))
     ET.indent(quiz)
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(quiz, encoding="unicode") \
         + "\n"
+
+
+def _exam_picture(lang, method):
+    from linkcli.exports.figure import figure_bytes
+
+    def picture(mech) -> bytes:
+        return figure_bytes(mech, "png", exam=True, lang=lang, method=method)
+    return picture

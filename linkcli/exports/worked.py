@@ -22,6 +22,7 @@ import numpy as np
 from linkcli.answers.explain import explain
 from linkcli.answers.formats import HEADINGS, fmt
 from linkcli.answers.sheet import evaluate
+from linkcli.answers.statement import data_lines
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import REPORT_SECTIONS
 
@@ -64,13 +65,12 @@ def _xy(z, f):
 
 def blocks(mech, lang="en", figure=True) -> list:
     """The worked solution of ``mech`` (at its own digit and driver value) as blocks."""
-    from linkcli.exports.moodle import data_lines
     w = WORDS[lang]
     result = evaluate(mech)
     out = [Block("heading", mech.title)]
     if mech.statement:
         out += [Block("text", p.strip()) for p in mech.statement.split("\n\n") if p.strip()]
-    out += [Block("heading", w["data"]), Block("lines", data_lines(mech))]
+    out += [Block("heading", w["data"]), Block("lines", data_lines(mech, lang))]
     out += [Block("heading", w["structure"]),
             Block("lines", explain(mech).splitlines()[2:])]
     if mech.elements is None:

@@ -20,9 +20,22 @@ P along d, or a torque C on a body, gives the forcing F Re(conj(d) P_i) or
 C theta_i.  The convective terms of the equations of motion are
 c_i = sum m Re(conj(G_i) sum_jk G_jk q'_j q'_k) + J theta_i sum_jk theta_jk q'_j q'_k,
 so that M q'' + c + R q' = Q + forcing is Lagrange's equation.
+
+Rotations.  A body's angle is measured continuously from the figure: its value
+at the figure is the drawn one, and at any other configuration it is followed
+along the straight path from the nearest configuration already measured (the
+figure, or the last one), so a rod that turns past 180 deg keeps turning
+instead of jumping by a turn.  A torsional spring's free angle names a
+direction, written in any range: it is taken a whole number of turns from the
+figure's relative angle so that the figure's deflection lies in [-180, 180]
+deg.  A rolling disc turns by theta = -s (x_C - x_C,figure) / R (x_C its centre
+along the floor's direction u, s its side), 0 in the figure.  A torque (constant
+or harmonic) on a disc's slider acts on the spinning disc (the block slides on a
+fixed guide and cannot take it); a torsional element names the disc or the block.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -30,6 +43,13 @@ import numpy as np
 from linkcli.errors import SolveError
 from linkcli.kinematics import jacobian as jac
 from linkcli.model import elements as el
+from linkcli.model.mechanism import FRAME
+
+#: a rotation is followed from a measured configuration in steps that move every coordinate
+#: by at most STEP of its scale (1 rad; the mechanism's size) and turn every body by less
+#: than a quarter turn; at most FOLLOW positions are solved for one configuration
+STEP = math.pi / 4
+FOLLOW = 256
 
 
 @dataclass
@@ -57,6 +77,7 @@ class Terms:
     measures: dict                # element name -> jac.Scalar
     masses: list
     jet: jac.Jet
+    rotations: dict               # body name -> jac.Scalar, measured from the figure
 
 
 class Lagrangian:
@@ -65,6 +86,8 @@ class Lagrangian:
     ``free`` holds each spring's free measure s0 (SI), fixed from the figure
     when the spring is unstretched or preloaded there; springs whose preload is
     chosen for equilibrium ('static') get theirs from ``forces.equilibrium``.
+    ``scales`` is each coordinate's scale: 1 rad for an angle, the mechanism's
+    size for a length.
     """
 
     def __init__(self, mech, solver):
@@ -76,23 +99,121 @@ class Lagrangian:
         self.figure = np.array([c.value for c in mech.coordinates], dtype=float)
         points = np.array(list(mech.fixed.values()) + list(mech.moving.values()))
         self.size = float(np.max(np.abs(points - points.mean()))) or 1.0   # m
-        self.free: dict = {}
+        self.scales = np.array([1.0 if c.kind == "angle" else self.size
+                                for c in mech.coordinates])
+        self.discs = dict(self.dyn.discs) if self.dyn is not None else {}
+        self.rotating = self._rotating()
+        self.turning = sorted(self.rotating - set(self.discs) - {FRAME})
         figure = self.jet(self.figure, second=False)
+        self._rolled = {d.name: float(self._roll(figure, d).value) for d in self.discs.values()}
+        raw = {b: float(jac.body_angle(mech, figure, b).value) for b in self.turning}
+        self._anchors = [(self.figure.copy(), raw)]
+        rotations = self.rotations(self.figure, figure)
+        self.free: dict = {}
         for spring in self.elements.springs.values():
-            s = float(self.measure(figure, spring.measure).value)
+            s = float(self.measure(figure, spring.measure, rotations).value)
             if spring.mode == el.FREE:
-                self.free[spring.name] = spring.value
+                self.free[spring.name] = self._free_measure(spring, s)
             elif spring.mode == el.PRELOAD:
                 self.free[spring.name] = s - spring.value / spring.stiffness
             else:           # unstretched; 'static' until its preload is solved
                 self.free[spring.name] = s
 
+    def _rotating(self) -> set:
+        """The bodies whose rotation an element or a load acts through."""
+        out = set()
+        for e in list(self.elements.springs.values()) + list(self.elements.dampers.values()):
+            if e.measure.kind == "angle":
+                out |= {e.measure.a, e.measure.b}
+        torques = [h.target for h in self.elements.forces.values() if h.kind == "torque"]
+        torques += [load.target for load in self.mech.loads.values() if load.kind == "torque"]
+        return out | {self.torqued(name) for name in torques}
+
+    def torqued(self, name) -> str:
+        """The body a torque on ``name`` turns: the disc whose slider ``name`` is, or itself."""
+        disc = self.dyn.disc_on(name) if self.dyn is not None else None
+        return name if disc is None else disc.name
+
+    def _free_measure(self, spring, s) -> float:
+        """s0 of a spring given its free measure: a torsional spring's free angle is a
+        direction, taken the whole number of turns from the figure's angle s that puts the
+        figure's deflection in [-pi, pi] (a disc's turn is not a direction: kept as given)."""
+        m = spring.measure
+        if m.kind != "angle" or m.a in self.discs or m.b in self.discs:
+            return spring.value
+        return spring.value + 2 * math.pi * round((s - spring.value) / (2 * math.pi))
+
     # kinematics -------------------------------------------------------------------------
     def jet(self, q, second=True) -> jac.Jet:
         q = np.asarray(q, dtype=float)
-        return jac.jet(self.solver, q[0] if self.n == 1 else tuple(q), second=second)
+        return jac.jet(self.solver, self._solver_q(q), second=second)
 
-    def measure(self, jt, m: el.Measure) -> jac.Scalar:
+    def _solver_q(self, q):
+        return q[0] if self.n == 1 else tuple(q)
+
+    def _roll(self, jt, disc) -> jac.Scalar:
+        """x_C: the disc's centre along its floor's direction u."""
+        guide = self.mech.bodies[disc.slider].guide
+        u = self.mech.fixed[guide.c] - self.mech.fixed[guide.b]
+        return jac.along(jt, None, disc.center, u / abs(u))
+
+    def _spin(self, jt, disc) -> jac.Scalar:
+        """The disc's rotation theta = -s (x_C - x_C,figure) / R (rolling: omega = -s v / R)."""
+        roll = self._roll(jt, disc)
+        k = -disc.side / disc.radius
+        return jac.Scalar(k * (roll.value - self._rolled.get(disc.name, 0.0)),
+                          [k * g for g in roll.grad], [[k * h for h in row] for row in roll.hess])
+
+    def rotations(self, q, jt) -> dict:
+        """The rotation of every body an element or load acts through, at coordinates ``q``
+        whose jet is ``jt``: measured continuously from the figure (a disc's is its spin)."""
+        out = {}
+        for name in self.rotating:
+            disc = self.discs.get(name)
+            out[name] = self._spin(jt, disc) if disc is not None else \
+                jac.body_angle(self.mech, jt, name)
+        if self.turning:
+            raw = {b: float(out[b].value) for b in self.turning}
+            for b, value in self._follow(np.asarray(q, dtype=float), raw).items():
+                out[b].value = value
+        return out
+
+    def _follow(self, q, raw) -> dict:
+        """The continuous rotations at ``q`` (raw values ``raw`` in (-pi, pi]), followed from
+        the nearest configuration measured so far."""
+        start, known = min(self._anchors, key=lambda a: self._distance(a[0], q))
+        budget = [FOLLOW]
+        values = self._walk(start, known, q, raw, budget)
+        self._anchors[1:] = [(q.copy(), values)]
+        return values
+
+    def _distance(self, a, b) -> float:
+        return float(np.max(np.abs(a - b) / self.scales)) if self.n else 0.0
+
+    def _walk(self, qa, known, qb, raw, budget) -> dict:
+        """Rotations at ``qb`` from those ``known`` at ``qa``: each body turns by the raw
+        change brought into (-pi, pi], over steps short enough that no body turns by a quarter
+        turn or more (halved until they are)."""
+        turn = {b: (raw[b] - known[b] + math.pi) % (2 * math.pi) - math.pi for b in known}
+        if self._distance(qa, qb) <= STEP and all(abs(t) < math.pi / 2 for t in turn.values()):
+            return {b: known[b] + turn[b] for b in known}
+        budget[0] -= 1
+        if budget[0] < 0:
+            raise SolveError("the bodies' rotations cannot be followed from the figure to "
+                             "this configuration: they turn by a quarter turn or more over "
+                             f"steps of 1/{FOLLOW} of the way", file=self.mech.file,
+                             hint="draw the figure nearer the equilibrium")
+        mid = 0.5 * (qa + qb)
+        kin = self.solver.positions(self._solver_q(mid))
+        self.solver.check(kin, velocities=False)
+        halfway = {}
+        for b in known:
+            _, (a, c), local = jac.body_axis(self.mech, b)
+            halfway[b] = float(np.angle(complex(np.ravel(kin.pos[c] - kin.pos[a])[0]))) - local
+        known = self._walk(qa, known, mid, halfway, budget)
+        return self._walk(mid, known, qb, raw, budget)
+
+    def measure(self, jt, m: el.Measure, rotations) -> jac.Scalar:
         if m.kind == "distance":
             if np.any(jt.pos[m.a] == jt.pos[m.b]):
                 raise SolveError(f"an element between {m.a} and {m.b} has no direction: the two "
@@ -101,10 +222,20 @@ class Lagrangian:
             return jac.distance(jt, m.a, m.b)
         if m.kind == "along":
             return jac.along(jt, m.a, m.b, m.direction)
-        a, b = jac.body_angle(self.mech, jt, m.a), jac.body_angle(self.mech, jt, m.b)
+        a, b = rotations[m.a], rotations[m.b]
         n = self.n
         return jac.Scalar(b.value - a.value, [b.grad[i] - a.grad[i] for i in range(n)],
                           [[b.hess[i][j] - a.hess[i][j] for j in range(n)] for i in range(n)])
+
+    def lever(self, jt, m: el.Measure, rotations) -> np.ndarray:
+        """Per coordinate, how fast the element's ends move per unit rate: |P_a,i| + |P_b,i|
+        (|theta_a,i| + |theta_b,i| for a torsional element), the most its measure's rate
+        s_i can be.  An element whose s_i is a small fraction of this is carried rigidly."""
+        n = self.n
+        if m.kind == "angle":
+            a, b = rotations[m.a], rotations[m.b]
+            return np.array([abs(float(a.grad[i])) + abs(float(b.grad[i])) for i in range(n)])
+        return np.array([abs(jt.d1(m.a, i)) + abs(jt.d1(m.b, i)) for i in range(n)], float)
 
     def masses(self, jt) -> list:
         out = []
@@ -115,15 +246,8 @@ class Lagrangian:
                             jac.body_point(self.mech, jt, mb.body, mb.center),
                             jac.body_angle(self.mech, jt, mb.body)))
         for disc in self.dyn.discs.values():
-            guide = self.mech.bodies[disc.slider].guide
-            u = self.mech.fixed[guide.c] - self.mech.fixed[guide.b]
-            u = u / abs(u)
-            roll = jac.along(jt, None, disc.center, u)
-            k = -disc.side / disc.radius      # omega = -s (v_C . u) / R
-            spin = jac.Scalar(k * roll.value, [k * g for g in roll.grad],
-                              [[k * h for h in row] for row in roll.hess])
             out.append(Mass(disc.name, disc.mass, disc.inertia, jac.point(jt, disc.center),
-                            spin))
+                            self._spin(jt, disc)))
         for p, mass in self.dyn.masses.items():
             out.append(Mass(p, mass, 0.0, jac.point(jt, p), None))
         return out
@@ -133,6 +257,7 @@ class Lagrangian:
         """M, K, R, Q and V at the coordinates ``q`` (one configuration, SI)."""
         q = np.asarray(q, dtype=float)
         jt = self.jet(q)
+        rotations = self.rotations(q, jt)
         n = self.n
         M, K, R = (np.zeros((n, n)) for _ in range(3))
         Q = np.zeros(n)
@@ -151,29 +276,30 @@ class Lagrangian:
             V -= m.mass * float(np.real(np.conj(g) * G))
         measures, forces = {}, {}
         for spring in self.elements.springs.values():
-            s = measures[spring.name] = self.measure(jt, spring.measure)
-            force = spring.stiffness * (s.value - self.free[spring.name])
+            s = measures[spring.name] = self.measure(jt, spring.measure, rotations)
+            stretch = float(s.value - self.free[spring.name])
+            force = spring.stiffness * stretch
             forces[spring.name] = float(force)
-            V += 0.5 * spring.stiffness * float(s.value - self.free[spring.name]) ** 2
+            V += 0.5 * force * stretch
             for i in range(n):
                 Q[i] -= force * s.grad[i]
                 for j in range(n):
                     K[i, j] += spring.stiffness * s.grad[i] * s.grad[j] + force * s.hess[i][j]
         for damper in self.elements.dampers.values():
-            s = measures[damper.name] = self.measure(jt, damper.measure)
+            s = measures[damper.name] = self.measure(jt, damper.measure, rotations)
             R += damper.coefficient * np.outer(s.grad, s.grad)
-        V += self._loads(jt, Q, K)
-        if not all(np.all(np.isfinite(x)) for x in (M, K, R, Q)):
+        V += self._loads(jt, rotations, Q, K)
+        if not all(np.all(np.isfinite(x)) for x in (M, K, R, Q, V)):
             raise SolveError("the energies are not finite numbers at this configuration: the "
                              "data overflow floating-point arithmetic", file=self.mech.file,
                              hint="check the magnitudes of masses, stiffnesses and lengths")
-        return Terms(q, M, K, R, Q, V, forces, measures, masses, jt)
+        return Terms(q, M, K, R, Q, V, forces, measures, masses, jt, rotations)
 
-    def _loads(self, jt, Q, K) -> float:
+    def _loads(self, jt, rotations, Q, K) -> float:
         """Add the constant loads of ``loads:`` (V = -work) to Q and K; returns their V."""
         V = 0.0
         for load in self.mech.loads.values():
-            s = self.load_measure(jt, load)
+            s = self.load_measure(jt, load, rotations)
             if s is None or load.value is None:
                 continue
             V -= load.value * float(s.value)
@@ -181,24 +307,37 @@ class Lagrangian:
             K -= load.value * np.asarray(s.hess, dtype=float)
         return V
 
-    def load_measure(self, jt, load) -> jac.Scalar | None:
-        """The measure a load works through: P along d, the body's angle, the actuator's length."""
+    def load_measure(self, jt, load, rotations) -> jac.Scalar | None:
+        """The measure a load works through: P along d, the body's rotation (a disc's spin
+        for a torque on it or on its slider), the actuator's length."""
         if load.kind == "force":
             return jac.along(jt, None, load.target, load.direction)
         if load.kind == "torque":
-            return jac.body_angle(self.mech, jt, load.target)
+            return rotations[self.torqued(load.target)]
         if load.kind == "axial":
             act = self.mech.actuators[load.target]
             return jac.distance(jt, act.a, act.b)
         return None
 
+    def load_lever(self, jt, load, rotations) -> np.ndarray:
+        """|P_i| of a force's point, |theta_i| of a torque's body, the actuator's ends' speeds."""
+        n = self.n
+        if load.kind == "force":
+            return np.array([abs(jt.d1(load.target, i)) for i in range(n)], float)
+        if load.kind == "torque":
+            return np.abs(np.asarray(rotations[self.torqued(load.target)].grad, dtype=float))
+        act = self.mech.actuators[load.target]
+        return self.lever(jt, el.Measure("distance", act.a, act.b), rotations)
+
     def forcing(self, jt) -> np.ndarray:
         """Complex amplitudes of the generalised harmonic forces, sum F e^{i phase} Re(conj(d) P_i)
-        and C e^{i phase} theta_i."""
+        and C e^{i phase} theta_i (theta a disc's spin for a torque on it or on its slider)."""
         f = np.zeros(self.n, dtype=complex)
         for h in self.elements.forces.values():
             if h.kind == "force":
                 s = jac.along(jt, None, h.target, h.direction)
+            elif self.torqued(h.target) in self.discs:
+                s = self._spin(jt, self.discs[self.torqued(h.target)])
             else:
                 s = jac.body_angle(self.mech, jt, h.target)
             f += h.amplitude * np.exp(1j * h.phase) * np.asarray(s.grad, dtype=float)
@@ -222,19 +361,20 @@ class Lagrangian:
     def potential(self, q) -> float:
         """V alone, from positions only (no rates): for checks of K by differences."""
         q = np.asarray(q, dtype=float)
-        kin = self.solver.positions(q[0] if self.n == 1 else tuple(q))
-        pos = kin.pos
-        jt = jac.Jet(pos, [{} for _ in range(self.n)], n=self.n)
+        kin = self.solver.positions(self._solver_q(q))
+        self.solver.check(kin, velocities=False)
+        jt = jac.Jet(kin.pos, [{} for _ in range(self.n)], n=self.n)
         jt.second = {(i, j): {} for i in range(self.n) for j in range(i, self.n)}
+        rotations = self.rotations(q, jt)
         V = 0.0
         g = self.dyn.gravity if self.dyn is not None else 0j
         for m in self.masses(jt):
             V -= m.mass * float(np.real(np.conj(g) * m.g[0]))
         for spring in self.elements.springs.values():
-            s = float(self.measure(jt, spring.measure).value)
+            s = float(self.measure(jt, spring.measure, rotations).value)
             V += 0.5 * spring.stiffness * (s - self.free[spring.name]) ** 2
         for load in self.mech.loads.values():
-            s = self.load_measure(jt, load)
+            s = self.load_measure(jt, load, rotations)
             if s is not None and load.value is not None:
                 V -= load.value * float(s.value)
         return V

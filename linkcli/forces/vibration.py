@@ -104,9 +104,11 @@ def modes(lin: Linear) -> Modes:
     top = max(float(np.max(np.abs(values))), 1e-300)
     if values[0] < -UNSTABLE * top:
         worst = lin.names[int(np.argmax(np.abs(vectors[:, 0])))]
-        raise SolveError(f"the static equilibrium is unstable: K has the negative eigenvalue "
-                         f"omega^2 = {values[0]:.6g} 1/s^2 (mode mostly along {worst}), so "
-                         "there is no natural frequency", file=lin.lag.mech.file,
+        kind = "a maximum" if values[-1] < -UNSTABLE * top else "a saddle point"
+        raise SolveError(f"the static equilibrium is unstable ({kind} of the potential energy): "
+                         f"K has the negative eigenvalue omega^2 = {values[0]:.6g} 1/s^2 (mode "
+                         f"mostly along {worst}), so there is no natural frequency",
+                         file=lin.lag.mech.file,
                          hint="stiffen the springs or check gravity's direction and the "
                          "equilibrium position")
     values = np.where(values < 0, 0.0, values)

@@ -89,14 +89,14 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
                          statement=self.block(self.statement, data) or "",
                          quiz=self.block(self.quiz, data, report) or Quiz(),
                          params={n: v for n, v in self.names.items()})
-        if coordinates:
+        if "dynamics" in data:
+            mech.dynamics = DynamicsReader(self, mech, _Skip).run(data["dynamics"])
+        if coordinates:       # after the dynamics: an element may name a rolling disc
             mech.elements = ElementsReader(self, mech, _Skip).run(data)
             for load in loads.values():
                 if load.kind == "driver":
                     self.error(("loads", load.name), "a 'driver' load needs a driver; with "
                                "coordinates, give forces, torques or axial loads")
-        if "dynamics" in data:
-            mech.dynamics = DynamicsReader(self, mech, _Skip).run(data["dynamics"])
         if self.errors:
             raise InputErrors(self.errors)
         return mech

@@ -80,6 +80,12 @@ class ElementsReader:
         except self.skip:
             return []
 
+    def turning(self) -> set:
+        """The names a torsional element or a torque may act on: bodies, actuators and rolling
+        discs (a torque on a disc's slider turns the disc)."""
+        discs = set(self.mech.dynamics.discs) if self.mech.dynamics is not None else set()
+        return set(self.mech.bodies) | set(self.mech.actuators) | discs
+
     # elements --------------------------------------------------------------------------
     def positive(self, value, path, kind, what):
         number = self.p.number(value, path, kind, self.units)
@@ -96,7 +102,7 @@ class ElementsReader:
         if "bodies" in spec:
             if "along" in spec:
                 raise self.p.error(path + ("along",), "'along' is for elements between points")
-            pool = {FRAME} | {n for n, b in self.mech.bodies.items()} | set(self.mech.actuators)
+            pool = {FRAME} | self.turning()
             a, b = self.p.pair(spec["bodies"], path + ("bodies",), pool, "body")
             return el.Measure("angle", a, b)
         a, b = self.p.pair(spec["between"], path + ("between",), set(self.mech.points))
@@ -183,8 +189,7 @@ class ElementsReader:
         self.p.name(name, path, what="excitation")
         spec = self.p.mapping(value, path, {"at", "x", "y", "on", "torque", "phase"})
         if "on" in spec:
-            pool = {n for n, b in self.mech.bodies.items()} | set(self.mech.actuators)
-            body = self.p.name(spec["on"], path + ("on",), pool, "body")
+            body = self.p.name(spec["on"], path + ("on",), self.turning(), "body")
             if "torque" not in spec or "at" in spec:
                 raise self.p.error(path, "a harmonic torque is {on: body, torque: amplitude}")
             amount = self.p.number(spec["torque"], path + ("torque",), "torque", self.units)
@@ -230,7 +235,8 @@ class ElementsReader:
                                "but excitation.frequency is given too",
                                hint="give one of them")
         out.frequency = omega
-        out.supports["road"] = el.Support("road", j, amplitude, self.phase(spec, path))
+        out.supports["road"] = el.Support("road", j, amplitude, self.phase(spec, path),
+                                          road=(wavelength, speed))
 
     # free response ---------------------------------------------------------------------
     def initial(self, value, path) -> dict:

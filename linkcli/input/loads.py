@@ -172,13 +172,15 @@ class LoadsSection:
             raise self.error(path + ("value",), "a pressure load is known: give the pressure",
                              hint="to find the force on the piston, make a force along the "
                              "guide or the driver's load unknown")
-        area = self.area(value, path, units)
-        force = self.number(raw, path + ("value",), "pressure", units) * area
+        area, bore = self.area(value, path, units)
+        pressure = self.number(raw, path + ("value",), "pressure", units)
+        force = pressure * area
+        stated = (pressure, area, bore)
         if not math.isfinite(force):
             raise self.error(path + ("value",), f"the force p A is not a finite number "
                              f"(p = {raw!r})", hint="check the pressure and the area's units")
         if target in actuators:
-            return Load(name, "axial", target, 1, force)
+            return Load(name, "axial", target, 1, force, stated)
         block = bodies[target]
         if block.guide.carrier != FRAME:
             raise self.error(path + ("on",), f"slider {target} runs on a guide carried by "
@@ -186,10 +188,11 @@ class LoadsSection:
                              "cylinder", hint="put the pressure on an actuator for a moving "
                              "cylinder")
         direction = self.fixed_guide_direction(data, target, units)
-        return Load(name, "force", block.points[0], direction, force)
+        return Load(name, "force", block.points[0], direction, force, stated)
 
-    def area(self, value, path, units) -> float:
-        """A (m^2) from ``area`` (area unit) or ``diameter`` (length unit): A = pi D^2 / 4."""
+    def area(self, value, path, units) -> tuple:
+        """(A in m^2, the bore D in m or None) from ``area`` (area unit) or ``diameter``
+        (length unit): A = pi D^2 / 4."""
         given = [k for k in ("area", "diameter") if k in value]
         if len(given) != 1:
             raise self.error(path, "a pressure load needs exactly one of 'area' or 'diameter'",
@@ -200,7 +203,7 @@ class LoadsSection:
         if not size > 0:
             raise self.error(path + (key,), f"a piston's {key} must be positive, got "
                              f"{value[key]!r}")
-        return size if key == "area" else math.pi * size * size / 4.0
+        return (size, None) if key == "area" else (math.pi * size * size / 4.0, size)
 
     def fixed_guide_direction(self, data, slider, units) -> complex:
         """The unit direction of slider ``slider``'s fixed guide as its file wrote it: +y for

@@ -26,13 +26,28 @@ def solver_for(mech, method="closed", tol=None):
     if method == "closed":
         key = ("closed",)
         if key not in cache:
-            cache[key] = Solver(mech)
+            cache[key] = _closed(mech)
         return cache[key]
     from linkcli.kinematics.newton import DEFAULT_TOL, NewtonSolver
     key = ("newton", DEFAULT_TOL if tol is None else float(tol))
     if key not in cache:
         cache[key] = NewtonSolver(mech, key[1])
     return cache[key]
+
+
+def _closed(mech):
+    """The closed-form solver; with declared coordinates that the decomposition cannot place
+    (a coupler's angle), the solver through substitute coordinates that it can."""
+    try:
+        return Solver(mech)
+    except StructureError:
+        if mech.elements is None:       # a driver: its rates are the file's, not converted
+            raise
+        from linkcli.kinematics.substitute import substitute_solver
+        solver = substitute_solver(mech)
+        if solver is None:
+            raise
+        return solver
 
 
 def state(mech, q=None, method="closed", tol=None):

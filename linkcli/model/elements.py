@@ -82,12 +82,14 @@ class Harmonic:
 class Support:
     """Imposed harmonic motion of coordinate number ``coordinate`` about its figure
     value: s(t) = amplitude e^{i (Omega t + phase)} (a shaker, a moving support,
-    or a road profile under a wheel)."""
+    or a road profile under a wheel).  ``road`` is (wavelength L in m, speed V in m/s) of
+    a road profile, whose Omega = 2 pi V / L, as the problem states them."""
 
     name: str
     coordinate: int
     amplitude: float
     phase: float = 0.0
+    road: tuple | None = None
 
 
 @dataclass

@@ -139,7 +139,9 @@ class Load:
     kind 'force': at point ``target`` along unit direction ``direction``
     (complex), magnitude ``value`` (N); 'torque': on body ``target`` (N m,
     counter-clockwise); 'axial': on actuator ``target`` (N, > 0 pushes the
-    ends apart); 'driver': generalised force on q (N or N m).
+    ends apart); 'driver': generalised force on q (N or N m).  A pressure load is
+    the force or axial load p A, with ``pressure`` = (p in Pa, A in m^2, the bore D
+    in m or None) as the problem states them.
     """
 
     name: str
@@ -147,6 +149,7 @@ class Load:
     target: str | None
     direction: complex
     value: float | None
+    pressure: tuple | None = None
 
 
 @dataclass(frozen=True)

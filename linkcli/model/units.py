@@ -139,6 +139,11 @@ class Units:
             value = math.fmod(value, turn)
         return value * self.factor("angle")
 
+    def show(self, dim, kind: str | None = None) -> tuple[str, float]:
+        """(unit name, SI factor) of a value of Dimension ``dim`` in this file's units
+        (:func:`show`): the one place an answer's display unit is decided."""
+        return show(self, dim, kind)
+
     # display units of derived quantities -------------------------------------
     def display(self, base: str, order: int) -> tuple[str, float]:
         """Display unit and SI factor of the ``order``-th time derivative of a
@@ -154,3 +159,157 @@ class Units:
         factor = self.factor("length")
         suffix = ["", "/s", "/s^2"][order]
         return unit + suffix, factor
+
+
+# --- dimensions ---------------------------------------------------------------------------
+class Dimension(tuple):
+    """A physical dimension as exponents of mass, length, time and angle (M, L, T, A).
+
+    Angles are kept apart for display (a mode shape in mm/deg, a stiffness in Nm/rad) and
+    ignored in comparisons (:meth:`agrees`), as SI does: the radian is 1, so a period
+    2 pi / omega (omega in rad/s) is a time.  Exponents are integers or halves (a square
+    root of a stiffness over a mass is a frequency)."""
+
+    __slots__ = ()
+    NAMES = ("mass", "length", "time", "angle")
+
+    def __new__(cls, mass=0, length=0, time=0, angle=0):
+        return super().__new__(cls, tuple(_exponent(e) for e in (mass, length, time, angle)))
+
+    mass = property(lambda self: self[0])
+    length = property(lambda self: self[1])
+    time = property(lambda self: self[2])
+    angle = property(lambda self: self[3])
+
+    def __mul__(self, other):
+        return Dimension(*(a + b for a, b in zip(self, other)))
+
+    def __truediv__(self, other):
+        return Dimension(*(a - b for a, b in zip(self, other)))
+
+    def __pow__(self, power):
+        return Dimension(*(a * power for a in self))
+
+    def agrees(self, other) -> bool:
+        """The same dimension in SI (angles apart)."""
+        return self[:3] == other[:3]
+
+    @property
+    def none(self) -> bool:
+        """Dimensionless (a ratio, an angle's radians aside)."""
+        return not any(self[:3])
+
+    def text(self) -> str:
+        """``M L^2 T^-2`` and the like; '1' for a pure number."""
+        parts = [f"{s}" + ("" if e == 1 else f"^{_exp_text(e)}")
+                 for s, e in zip("MLTA", self) if e]
+        return " ".join(parts) or "1"
+
+    def __repr__(self):
+        return f"Dimension({self.text()})"
+
+
+def _exponent(value):
+    """An exponent as an int, or a float that is a whole number of halves."""
+    twice = round(2 * value)
+    if abs(2 * value - twice) > 1e-9:
+        raise InputError(f"a dimension's exponent must be a whole number of halves, got {value}")
+    return twice // 2 if twice % 2 == 0 else twice / 2
+
+
+def _exp_text(e) -> str:
+    return str(int(e)) if float(e).is_integer() else str(e)
+
+
+NONE = Dimension()
+MASS_DIM, LENGTH_DIM, TIME_DIM, ANGLE_DIM = (Dimension(1), Dimension(0, 1), Dimension(0, 0, 1),
+                                             Dimension(0, 0, 0, 1))
+FORCE_DIM = Dimension(1, 1, -2)
+
+#: the dimension of each kind of unit
+DIMENSIONS = {
+    "length": LENGTH_DIM,
+    "angle": ANGLE_DIM,
+    "angular_rate": ANGLE_DIM / TIME_DIM,
+    "force": FORCE_DIM,
+    "torque": FORCE_DIM * LENGTH_DIM,
+    "mass": MASS_DIM,
+    "inertia": MASS_DIM * LENGTH_DIM ** 2,
+    "stiffness": FORCE_DIM / LENGTH_DIM,
+    "torsional_stiffness": FORCE_DIM * LENGTH_DIM / ANGLE_DIM,
+    "damping": FORCE_DIM / LENGTH_DIM * TIME_DIM,
+    "torsional_damping": FORCE_DIM * LENGTH_DIM * TIME_DIM / ANGLE_DIM,
+    "frequency": ANGLE_DIM / TIME_DIM,
+    "speed": LENGTH_DIM / TIME_DIM,
+    "time": TIME_DIM,
+    "pressure": FORCE_DIM / LENGTH_DIM ** 2,
+    "area": LENGTH_DIM ** 2,
+}
+#: the kind a dimension is shown in when a quantity names none (frequencies and angular
+#: rates share a dimension: a rate of an angle is shown as an angular rate unless asked)
+SHOWN_AS = {}
+for _kind in ("length", "angle", "angular_rate", "force", "torque", "mass", "inertia",
+              "stiffness", "torsional_stiffness", "damping", "torsional_damping", "speed",
+              "time", "pressure", "area"):
+    SHOWN_AS.setdefault(DIMENSIONS[_kind], _kind)
+#: pure numbers
+RATIOS = {"": 1.0, "1": 1.0, "%": 0.01}
+
+
+def unit_dimension(name: str):
+    """(kind, Dimension, SI factor) of a unit ``name`` of the tables ('' or '1': a pure
+    number, '%': a hundredth); None for a name no table has.  A name shared by two kinds
+    ('lb': a mass and a force; 'rpm': a frequency and an angular rate) is the first kind
+    of :data:`KINDS` that has it, except where ``prefer`` below says otherwise."""
+    if name in RATIOS:
+        return None, NONE, RATIOS[name]
+    for kind, table in KINDS.items():
+        if name in table:
+            return kind, DIMENSIONS[kind], table[name]
+    return None
+
+
+def show(units, dim, kind=None) -> tuple[str, float]:
+    """(unit name, SI factor) of a value of dimension ``dim`` in the file's units: the
+    file's unit of ``kind`` (or of the kind the dimension is shown as); else a product of
+    the file's named units (a force, a length, a mass, a time, an angle) with the fewest
+    factors, written as ``N/rad``, ``kg mm``, ``mm/deg``; a pure number has no unit."""
+    if kind is not None and DIMENSIONS[kind] == dim:
+        return units.names[kind], units.factor(kind)
+    named = SHOWN_AS.get(dim)
+    if named is not None:
+        return units.names[named], units.factor(named)
+    if dim == NONE:
+        return "", 1.0
+    return _composed(units, dim)
+
+
+#: the kinds a composed unit is made of, in the order they are tried and written
+_BASES = ("force", "mass", "length", "time", "angle")
+
+
+def _composed(units, dim) -> tuple[str, float]:
+    """``dim`` as a product of the file's units of :data:`_BASES` with the fewest factors
+    (a force counts once): force^f length^l mass^m time^t angle^a."""
+    best = None
+    for f in range(-2, 3):
+        rest = dim / FORCE_DIM ** f
+        powers = {"force": f, "mass": rest.mass, "length": rest.length, "time": rest.time,
+                  "angle": rest.angle}
+        cost = sum(abs(p) for p in powers.values())
+        if best is None or cost < best[0]:
+            best = (cost, powers)
+    powers = best[1]
+    up, down, factor = [], [], 1.0
+    for kind in _BASES:
+        p = powers[kind]
+        if not p:
+            continue
+        name = units.names[kind]
+        factor *= units.factor(kind) ** p
+        word = name if abs(p) == 1 else f"{name}^{_exp_text(abs(p))}"
+        (up if p > 0 else down).append(word)
+    text = " ".join(up) or "1"
+    if down:
+        text += "/" + (down[0] if len(down) == 1 else "(" + " ".join(down) + ")")
+    return text, factor

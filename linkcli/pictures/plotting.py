@@ -239,9 +239,10 @@ def _wrap(text, width=80):
 
 
 # --- draw and animate ------------------------------------------------------------------------
-def _positions(mech, q):
-    """Positions at driver values ``q`` (SI); an error where the mechanism cannot assemble."""
-    solver = solver_for(mech)
+def _positions(mech, q, method="closed"):
+    """Positions at driver values ``q`` (SI) by ``method``; an error where the mechanism
+    cannot assemble."""
+    solver = solver_for(mech, method)
     kin = solver.positions(q)
     solver.check(kin, velocities=False)
     return kin

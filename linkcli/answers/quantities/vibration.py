@@ -103,7 +103,7 @@ def evaluate(mech, names, result):
             result.values[name] = value
             result.units[name] = unit
     result.analysis = analysis
-    result.cautions = road_lift_off(analysis)
+    result.cautions = list(analysis.lin.eq.cautions) + road_lift_off(analysis)
     return result
 
 

@@ -289,11 +289,10 @@ from linkcli.errors import InputError, SolveError  # noqa: E402
 from linkcli.forces import joint_forces, motion  # noqa: E402
 from linkcli.kinematics.solvers import state  # noqa: E402
 
-from linkcli.model.mechanism import FRAME  # noqa: E402
 from linkcli.model.units import FORCE, TORQUE  # noqa: E402
 
 from closure import q_factor  # noqa: E402
-from test_reactions import residuals  # noqa: E402
+from test_reactions import contact_actions, residuals  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 Q6 = os.path.join(ROOT, "mechanisms", "smii-04-q6-atwood.yaml")
@@ -390,37 +389,6 @@ def test_pinion_friction_from_its_free_body():
     assert "normal force of mesh is not determined" in str(exc.value)
 
 
-def _contact_actions(mech, kin, reactions):
-    """The contacts' forces on the bodies and pins, written from the model's data here:
-    a cord pulls its pulley along u at C + s r i u and its end back; a belt pulls the other
-    disc back at its own tangent point; a disc on a line takes T along the line at
-    H = C + s r i u, its body -T there."""
-    pos = kin.pos
-    out = []
-    for name, r in mech.rolling.items():
-        t = reactions.contacts[name]
-        c = pos[r.center]
-        if r.kind in ("cord", "belt"):
-            u = r.direction
-            out.append((r.disc, t * u, c + r.side * r.radius * 1j * u, 0.0))
-            if r.kind == "cord":          # a fixed end is the frame's
-                end = FRAME if r.point in mech.fixed else ("pin", r.point)
-                out.append((end, -t * u, pos[r.point], 0.0))
-            else:
-                d = pos[r.track] + r.other_side * r.track_radius * 1j * u
-                out.append((r.other, -t * u, d, 0.0))
-        else:
-            body = mech.bodies[r.carrier]
-            b, e = (body.guide.b, body.guide.c) if body.kind == "block" else body.points[:2]
-            figure = {**mech.fixed, **mech.moving}
-            turn = (pos[e] - pos[b]) / np.abs(pos[e] - pos[b]) / \
-                ((figure[e] - figure[b]) / abs(figure[e] - figure[b]))
-            u = r.direction * turn
-            h = c + r.side * r.radius * 1j * u
-            out += [(r.disc, t * u, h, 0.0), (r.carrier, -t * u, h, 0.0)]
-    return out
-
-
 TACKLE_MASSES = TACKLE + """dynamics:
   gravity: 9.81
   bodies: {pA: {inertia: 0.02, center: CA}, pB: {mass: 2, inertia: 0.01, center: CB}}
@@ -449,7 +417,7 @@ def test_every_body_and_pin_balances_with_the_contacts(text):
         np.array([-0.2, 0.0, 0.15])
     kin, _ = state(mech, q0 + span)
     r = joint_forces.solve(mech, kin)
-    force_err, moment_err, _ = residuals(mech, kin, r, _contact_actions(mech, kin, r))
+    force_err, moment_err, _ = residuals(mech, kin, r, contact_actions(mech, kin, r))
     assert force_err < 1e-9 and moment_err < 1e-9
     unknown = mech.unknown_load()
     result = linkcli.loads(text).solve(q=(q0 + span) / q_factor(mech), names=[unknown.name])

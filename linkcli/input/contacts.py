@@ -89,7 +89,7 @@ class ContactsSection:
             else:
                 u = self.direction(on["line"], where + ("line",), units)
             if carrier is None:
-                carrier = self.ground(center, where, bodies)
+                carrier = self.ground(center, where, bodies, u, figure)
             # the centre is on `side` of the line: the contact is on the other side
             return Rolling(name, disc, center, radius, "line", u, -side, carrier=carrier)
         allowed = {"circle", "disc", "radius", "inside"}
@@ -156,12 +156,19 @@ class ContactsSection:
                          "a line of that body; a disc rolls on the ground only on a line of "
                          "fixed points")
 
-    def ground(self, center, where, bodies) -> str:
-        """FRAME for a line given by its direction, unless the disc's centre rides on a
-        guide carried by a moving body: then the line may be that body's floor, and the
-        file must say which."""
-        for b in bodies.values():
-            if b.kind == "block" and center in b.points and b.guide.carrier != FRAME:
+    def ground(self, center, where, bodies, u, figure) -> str:
+        """FRAME for a line given by its direction ``u``, unless the disc's centre rides on a
+        guide carried by a moving body and on no fixed guide along u: then the line may be
+        that body's floor, and the file must say which."""
+        blocks = [b for b in bodies.values() if b.kind == "block" and center in b.points]
+        for b in blocks:
+            if b.guide.carrier != FRAME:
+                continue
+            axis = figure[b.guide.c] - figure[b.guide.b]
+            if abs((axis / abs(axis) * u.conjugate()).imag) < FIGURE_TOL:
+                return FRAME        # the centre runs on the ground's parallel: the ground
+        for b in blocks:
+            if b.guide.carrier != FRAME:
                 carrier = b.guide.carrier.split(".")[0]
                 raise self.error(where, f"the centre {center} rides on a guide of {carrier} "
                                  f"(slider {b.name}): does the disc roll on {carrier} or on "

@@ -11,7 +11,7 @@ import weakref
 
 import numpy as np
 
-from linkcli.errors import InputError
+from linkcli.errors import InputError, StructureError
 from linkcli.kinematics.closed_form import Solver
 
 METHODS = ("closed", "newton")

@@ -14,7 +14,8 @@
 The disc (or pulley) is a link whose first point is its centre; it may have any number of
 contacts and cords.  A line belongs to the frame unless ``body`` names the link or slider
 that carries it; a line through points of a moving body, or under a centre that rides on a
-moving body's guide, must name its body (``body: frame`` for the ground).  Whether a disc is
+moving body's guide (and on no fixed guide along the line), must name its body
+(``body: frame`` for the ground).  Whether a disc is
 inside or outside a circle is read from the figure unless ``inside`` is given; a cord must
 be taut and tangent in the figure, a line through two points tangent to the disc.
 """

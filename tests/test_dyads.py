@@ -10,6 +10,7 @@ import pytest
 
 import linkcli
 from linkcli.kinematics.closed_form import residuals
+from linkcli.kinematics.contacts import Track
 from linkcli.kinematics.topology import Coord, Dist, Line
 
 from closure import (CASE_IDS, CASES, assembled, closure_errors, load_case, q_factor, shipped,
@@ -44,6 +45,8 @@ def _relative_residuals(solver, kin):
             out[key] = value / length ** 2
         elif isinstance(c, Line):
             out[key] = value / (np.abs(kin.pos[c.c] - kin.pos[c.b]) * L)
+        elif isinstance(c, Track):          # a contact's relation: radians already
+            out[key] = value
         else:
             assert isinstance(c, Coord)
             out[key] = value / L

@@ -774,8 +774,8 @@ def test_sweep_and_plot_take_the_new_quantities(tmp_path, capsys):
     ("{reaction: [B, frame], component: x}", "quantities.bad.reaction[0]",
      "undefined point 'B' on body 'frame'"),
     ("{reaction: [A, Q], component: x}", "quantities.bad.reaction[1]", "undefined body 'Q'"),
-    ("{reaction: [A, AB], component: normal}", "quantities.bad.component",
-     "component is x, y or magnitude"),
+    ("{reaction: [A, AB], component: tangent}", "quantities.bad.component",
+     "component is x, y, magnitude, along or normal"),
     ("{reaction: A, component: x}", "quantities.bad.reaction", "expected two names"),
     ("{slider_force: AB, component: normal}", "quantities.bad.slider_force",
      "undefined body 'AB' for a slider force"),
@@ -818,11 +818,17 @@ def test_an_actuator_has_no_single_instant_centre():
         linkcli.loads(text)
 
 
-def test_joint_forces_are_refused_with_rolling_contacts():
-    text = WHEEL.replace("quantities:\n", "quantities:\n  R: {reaction: [C, hub], "
-                         "component: x}\n", 1)
-    with pytest.raises(SolveError, match="joint forces are not modelled for rolling"):
-        solve(text, ["R"])
+def test_joint_forces_with_a_rolling_contact_from_the_wheels_free_body():
+    """A wheel with inertia J only, its centre driven at a_x: the floor's friction T turns
+    it, r T = J alpha with alpha = -a_x / r, and the pin at C holds it back, R_x = -T."""
+    text = WHEEL.replace("quantities:\n", "loads: {F: {type: driver, value: unknown}}\n"
+                         "dynamics: {bodies: {wheel: {inertia: 0.01, center: C}}}\n"
+                         "quantities:\n  R: {reaction: [C, wheel], component: x}\n"
+                         "  T: {contact_force: floor, component: friction}\n", 1)
+    got = solve(text, ["R", "T"])
+    alpha = 15e-3 / 0.1                     # accel -15 mm/s^2, r = 100 mm
+    near(got["T"], 0.01 * alpha / 0.1)
+    near(got["R"], -0.01 * alpha / 0.1)
 
 
 # --- the keys of the seeds -----------------------------------------------------------------

@@ -263,13 +263,24 @@ def test_disc_that_does_not_fit_the_ring(tmp_path, capsys):
     assert "in the figure the centres are 250 mm apart" in capsys.readouterr().err
 
 
-def test_newton_and_joint_forces_refuse_rolling(tmp_path, capsys):
-    path = tmp_path / "w.yaml"
-    path.write_text(LINE)
-    assert main(["solve", str(path), "--method", "newton"]) == 3
-    assert "Newton method does not model rolling contacts" in capsys.readouterr().err
-    assert main(["solve", str(path), "--reactions"]) == 3
-    assert "joint forces are not modelled for rolling" in capsys.readouterr().err
+@pytest.mark.parametrize("text, q", [
+    (LINE, np.linspace(-0.3, 0.4, 15)),
+    (CIRCLE.replace("{d}", "250"), np.radians(np.linspace(10, 150, 15))),
+    (CORD, np.linspace(-0.6, -0.2, 15)),
+], ids=["line", "inside", "cord"])
+def test_newton_solves_contacts_as_the_closed_form(text, q):
+    """Newton's rows of the contacts (one a contact) give the closed form's positions and
+    rates, the disc turning more than half a turn over the range."""
+    mech = linkcli.loads(text)
+    ref = _marker_rates(text, q)[1]
+    newton = mech.solver("newton")
+    kin = newton.positions(q)
+    newton.velocities(kin, np.ones_like(q))
+    newton.accelerations(kin, np.zeros_like(q))
+    for p in ("C", "D"):
+        assert np.max(np.abs(kin.pos[p] - ref.pos[p])) < 1e-9
+        assert np.max(np.abs(kin.vel.get(p, 0) - ref.vel.get(p, 0))) < 1e-9
+        assert np.max(np.abs(kin.acc.get(p, 0) - ref.acc.get(p, 0))) < 1e-8
 
 
 def test_seed_24_january_disc_in_a_guide_with_a_pendulum():

@@ -31,6 +31,7 @@ import numpy as np
 from linkcli.errors import StructureError
 from linkcli.kinematics.dyads import cross
 from linkcli.kinematics.solvers import solver_for
+from linkcli.kinematics.contacts import Track
 from linkcli.kinematics.topology import Dist, Line, partial
 from linkcli.model.mechanism import FRAME
 
@@ -297,6 +298,8 @@ class _Writer:
 
     def group(self, group):
         handler = self.handlers.get(group.kind, _Writer._generic)
+        if any(isinstance(c, Track) for c in group.constraints):
+            handler = _Writer._generic          # a point on a contact's line
         if group.kind != "place":
             self.step += 1
             self.heading = f"{self.step}. {group.describe()}"
@@ -472,10 +475,10 @@ class _Writer:
                              "angle", (), f"direction of the guide of {block.name} ({g.text})")
 
     def _roll(self, group):
-        r = group.constraints[0]
-        # the other disc's centre is the track; its rim mark gives its turn
-        reads = [r.center] + [x for x in (r.point, r.track) if x] + (
-            list(self.mech.bodies[r.other].points[:2]) if r.other else [])
+        rel, _ = group.constraints
+        r = self.mech.rolling[rel.names[0]]
+        # the points the contact's measures read: the centres, the cord's end, the marks
+        reads = [p for t, _, _ in rel.terms for p in t.points if p != group.point]
         args = tuple(self.point(x) for x in dict.fromkeys(reads))
         self.emit((self.name(group.point),), f"rolling{r.kind.capitalize()}", args, args, group.kind,
                   library=False, note=f"not in the exam's library: {group.describe()}")
@@ -508,6 +511,8 @@ class _Writer:
         for c in group.constraints:
             values = [getattr(c, f.name) for f in dataclasses.fields(c)] \
                 if dataclasses.is_dataclass(c) else [c]
+            if isinstance(c, Track):     # the points of the contacts' measures
+                values = [p for t, _, _ in c.relation.terms for p in t.points]
             for v in values:
                 if isinstance(v, str) and v != group.point and v not in reads and (
                         self.name(v) in self.done or

@@ -13,9 +13,9 @@ import json
 import numpy as np
 
 from linkcli.forces import motion as dyn_mod
-from linkcli.forces.joint_forces import solve
+from linkcli.forces.joint_forces import contact_normal, solve
 from linkcli.model.mechanism import FRAME
-from linkcli.forces.pairs import unit
+from linkcli.forces.pairs import contact_actions, unit
 from linkcli.answers.formats import fmt
 from linkcli.kinematics.solvers import state
 from linkcli.model.units import FORCE, TORQUE
@@ -24,7 +24,9 @@ NOTE = ("Pins: force the pin exerts on the body, in frame axes and along/normal 
         "body's axis (first -> second point; the guide direction for sliders), M its friction "
         "couple on the body (friction circles). Sliding pairs: force of the guide on the block "
         "(along = friction T, normal = N), M its moment about the slider point; discs: ground "
-        "contact force (along the line, normal), M the rolling resistance couple.")
+        "contact force (along the line, normal), M the rolling resistance couple. Cords: "
+        "the tension (along the strand); rolling contacts: the force of what the disc rolls "
+        "on (along = friction T, normal = N of the slider on the line's parallel).")
 COMPONENTS = ("Fx", "Fy", "magnitude", "along", "normal", "moment")
 
 
@@ -32,7 +34,8 @@ def rows(reactions, index=None) -> list[tuple]:
     """(name, Fx, Fy, |F|, along, normal) per pin and (..., M) per pair, in SI units at
     driver value number ``index`` (default the first)."""
     out = [_pin_row(reactions, key, force, index) for key, force in reactions.pins.items()]
-    return out + [_pair_row(reactions, name, pf, index) for name, pf in reactions.pairs.items()]
+    out += [_pair_row(reactions, name, pf, index) for name, pf in reactions.pairs.items()]
+    return out + [_contact_row(reactions, name, index) for name in reactions.contacts]
 
 
 def _pick(value, index):
@@ -72,6 +75,29 @@ def _pair_row(reactions, name, pf, index) -> tuple:
     moment = _pick(pf.moment, index).real if pf.kind != "disc" else \
         _pick(reactions.resistances[name], index).real if name in reactions.resistances else None
     return (label, force.real, force.imag, abs(force), t_val, dyn_mod.dot(1j * u, force), moment)
+
+
+def _contact_row(reactions, name, index) -> tuple:
+    """A cord's pull on its pulley (along = the tension), or the force of what a disc rolls
+    on (along = friction T along the line or the track's tangent, normal = N where a slider
+    holds the centre on the line, else None)."""
+    mech = reactions.mech
+    r = mech.rolling[name]
+    (_, u, _), *_ = contact_actions(mech, r, reactions.kin.pos)
+    u = _pick(u, index)
+    t_val = _pick(reactions.contacts[name], index).real
+    if r.kind in ("cord", "belt"):
+        force = t_val * u
+        return (f"cord {name} (tension, on {r.disc})", force.real, force.imag, abs(force),
+                t_val, None, None)
+    normal = contact_normal(reactions, name)
+    n_val = None if normal is None else _pick(normal, index).real
+    n = -r.side * 1j * u if r.kind == "line" else -1j * u
+    force = t_val * u + (n_val or 0.0) * n
+    on = "ground" if r.kind == "circle" or r.kind == "line" and r.carrier == FRAME else \
+        r.other if r.kind == "disc" else r.carrier
+    return (f"disc {r.disc} on {on} ({name})", force.real, force.imag, abs(force), t_val,
+            n_val, None)
 
 
 def _entries(reactions) -> list[tuple[str, dict]]:

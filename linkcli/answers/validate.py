@@ -8,8 +8,8 @@ file sets a default ``k`` its expressions are also evaluated for every other
 digit, so a value that fails only for some students is found too.
 
 Exit status of a file: 0 valid (a structure that does not decompose into
-dyads is valid: ``--method newton`` solves it), 2 invalid input, 3 valid
-input that cannot be solved (mobility).
+dyads is valid when ``--method newton`` assembles it), 2 invalid input, 3 valid
+input that cannot be solved (mobility, a structure neither method solves).
 """
 from __future__ import annotations
 
@@ -71,9 +71,8 @@ def validate_file(path: str, k: int | None = None) -> Validation:
     from linkcli.kinematics.solvers import solver_for
     try:
         topology = solver_for(mech).topology
-    except StructureError as exc:   # valid, but only the numerical method solves it
-        result.summary = f"valid; {exc.detail}: solve it with --method newton"
-        return result
+    except StructureError as exc:   # valid, if the numerical method solves it
+        return _newton_only(result, mech, exc, name)
     except LinkcliError as exc:
         result.problems, result.exit_code = _lines(_errors(exc.located(name))), exc.exit_code
         return result
@@ -86,6 +85,23 @@ def validate_file(path: str, k: int | None = None) -> Validation:
         result.exit_code = 3          # solve cannot answer at the file's own position
     elif result.problems:
         result.summary += f", {len(result.problems)} warning{'s' if len(result.problems) != 1 else ''}"
+    return result
+
+
+def _newton_only(result, mech, exc, name) -> Validation:
+    """A structure the closed form does not decompose: valid when Newton assembles it at
+    the file's position (it solves one coordinate); else what ``solve`` will say (exit 3)."""
+    from linkcli.kinematics.solvers import solver_for
+    if len(mech.coordinates) == 1 and mech.elements is None:
+        try:
+            solver_for(mech, "newton")
+        except LinkcliError as newton:
+            result.problems = _lines(_errors(newton.located(name)))
+            result.exit_code = newton.exit_code
+            return result
+        result.summary = f"valid; {exc.detail}: solve it with --method newton"
+        return result
+    result.problems, result.exit_code = _lines(_errors(exc.located(name))), exc.exit_code
     return result
 
 

@@ -14,11 +14,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.errors import Caution, StructureError
+from linkcli.errors import Caution
 from linkcli.kinematics.closed_form import where_text
 from linkcli.forces import coulomb, friction
 from linkcli.forces.newton_euler import System
-from linkcli.forces.pairs import PairForce
+from linkcli.forces.pairs import PairForce, hub
 
 
 @dataclass
@@ -34,6 +34,7 @@ class Reactions:
     loads: dict = field(default_factory=dict)    # every load's value (SI)
     resistances: dict = field(default_factory=dict)  # disc slider -> rolling resistance couple
     pin_couples: dict = field(default_factory=dict)  # pin -> friction couple on its ``other``
+    contacts: dict = field(default_factory=dict)  # contact -> its force (pairs.contact_actions)
 
 
 def solve(mech, kin) -> Reactions:
@@ -41,10 +42,6 @@ def solve(mech, kin) -> Reactions:
 
     ``kin`` needs positions; velocities with friction; accelerations with masses.
     """
-    if mech.rolling:
-        raise StructureError("joint forces are not modelled for rolling contacts and cords "
-                             f"({', '.join(mech.rolling)})", file=mech.file,
-                             hint="the loads by virtual work and the vibrations do not need them")
     dyn = mech.dynamics
     system = System(mech, dyn, kin)
     rhs = -system.known()
@@ -74,10 +71,46 @@ def _unpack(system, x, losses) -> Reactions:
     for point, pin in losses.pins.items():
         out.pin_couples[point] = friction.couple(pin.radius, losses.sigma[("pin", point)],
                                                  out.pins[(point, pin.other)])
+    for name in mech.rolling:
+        out.contacts[name] = system.value(x, ("contact", name, 0))
     out.unknown = system.value(x, ("unknown", None, 0))
     out.loads = {n: (load.value if load.value is not None else out.unknown)
                  for n, load in mech.loads.items()}
-    out.cautions = lift_off(mech, system.kin, out.pairs)
+    out.cautions = lift_off(mech, system.kin, out.pairs) + slack(out)
+    return out
+
+
+def contact_normal(reactions, name):
+    """The normal force of a disc rolling on a line (from the line towards the centre):
+    that of the slider keeping its centre on the line's parallel (``pairs.hub``), None
+    when links hold the centre instead."""
+    found = hub(reactions.mech, reactions.mech.rolling[name], reactions.kin.pos)
+    if found is None:
+        return None
+    slider, sign = found
+    return sign * np.asarray(reactions.pairs[slider].normal, dtype=float)
+
+
+def slack(reactions) -> list:
+    """A cord can only pull and a disc only push on what it rolls on: a tension or a
+    normal force below zero is named with its value, where it happens."""
+    mech, kin = reactions.mech, reactions.kin
+    out = []
+    for name, r in mech.rolling.items():
+        cord = r.kind in ("cord", "belt")
+        value = reactions.contacts[name] if cord else contact_normal(reactions, name)
+        if value is None:
+            continue
+        value = np.asarray(value, dtype=float)
+        bad = value < 0
+        if np.any(bad):
+            worst = float(np.min(value))
+            where = where_text(mech, kin.q, np.broadcast_to(bad, np.shape(kin.q)))
+            what = (f"cord {name} is slack (tension {worst:.6g} N {where}): a cord cannot "
+                    "push, so the motion is not the one the cord imposes there") if cord else \
+                (f"disc {r.disc} lifts off at {name} (normal force {worst:.6g} N {where}): "
+                 "what it rolls on can only push, so the motion is not the rolling one there")
+            out.append(Caution("slack" if cord else "contact", what, mech.file, {name: worst}))
     return out
 
 

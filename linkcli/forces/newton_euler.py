@@ -11,7 +11,9 @@ applied at p act on it)
 
 Columns (unknowns): ``R_pb``, the force pin p exerts on body b (x, y; the frame
 included at fixed pivots); the two forces of each sliding pair or rolling contact
-(``pairs``); the one unknown load.  Grübler's count n = 1 makes the system square:
+(``pairs``); the one force of each contact of ``rolling:`` / ``cords:`` (the friction of
+a disc on what it rolls on, a cord's tension: ``pairs.contact_actions``); the one
+unknown load.  Grübler's count n = 1 makes the system square:
 A x = -b, with column j of A the terms per unit unknown j and b the known terms
 (known loads, gravity, inertia forces and torques).
 
@@ -31,7 +33,7 @@ from linkcli.errors import SingularError
 from linkcli.forces import motion as dyn_mod
 from linkcli.kinematics.dyads import cross
 from linkcli.model.mechanism import FRAME
-from linkcli.forces.pairs import actuator_axis, located_pairs, unit
+from linkcli.forces.pairs import actuator_axis, contact_actions, located_pairs, unit
 
 
 #: a dimensionless condition number above COND_LIMIT is a singular position
@@ -53,7 +55,7 @@ class System:
         self.rows, self.n_rows = _rows(self.bodies, self.pin_bodies)
         self.pairs = located_pairs(mech, dyn, kin.pos)
         self.pair = dict(self.pairs)
-        self.columns = _columns(self.pin_bodies, self.pairs)     # (kind, key, part)
+        self.columns = _columns(self.pin_bodies, self.pairs, mech.rolling)  # (kind, key, part)
         self.index = {c: i for i, c in enumerate(self.columns)}
         self.length = _length_scale(mech, self.pos)
 
@@ -161,6 +163,13 @@ class System:
             factor = losses.disc_factor(key) if self.pair[key].kind == "disc" \
                 else losses.slider_factor(key)
             self.pair_column(vec, self.pair[key], part, factor)
+        elif kind == "contact":
+            for target, force, at in contact_actions(self.mech, self.mech.rolling[key],
+                                                     self.pos):
+                if isinstance(target, tuple):
+                    self.pin_force(vec, target[1], force)
+                else:
+                    self.body_force(vec, target, force, at)
         else:
             self.apply_load(vec, self.mech.unknown_load(), 1.0)
         return vec
@@ -328,14 +337,16 @@ def _rows(bodies, pin_bodies):
     return rows, row
 
 
-def _columns(pin_bodies, pairs) -> list:
-    """(kind, key, part) of every unknown: pin forces, pair forces, the unknown load."""
+def _columns(pin_bodies, pairs, contacts=()) -> list:
+    """(kind, key, part) of every unknown: pin forces, pair forces, the contacts' forces,
+    the unknown load."""
     columns = []
     for p, bodies in pin_bodies.items():
         for b in bodies:
             columns += [("pin", (p, b), 0), ("pin", (p, b), 1)]
     for name, _ in pairs:
         columns += [("pair", name, 0), ("pair", name, 1)]
+    columns += [("contact", name, 0) for name in contacts]
     columns.append(("unknown", None, 0))
     return columns
 

@@ -9,6 +9,20 @@ Each pair has two unknowns, acting on the moving part ``on`` (and, opposite, on
   T = -mu sgn(v_rel) |N| acts along u;
 - rolling disc: the contact forces T along u and N along n = s i u (from the
   ground to the centre C, s the disc's side), at the contact point C - R n.
+
+A rolling contact or cord of ``rolling:`` / ``cords:`` (``contact_actions``) has one
+unknown F, the force of what the disc rolls on, or the cord's tension:
+
+- on a line (direction u, turning with its body): F = T along u on the disc at the contact
+  point H = C + s r i u (``Rolling.side``), -T u on the line's body at H;
+- a cord to P: the tension F pulls the pulley along u at its tangent point C + s r i u and
+  P back along -u; a belt strand pulls the other disc along -u at its own tangent point;
+- a circle or a disc about O: F = T along t = i e (e = (C - O) / |C - O|) at
+  H = C + r e inside, C - r e outside, -T t on the track.
+
+Each does no work in the motions the contact allows (no slip at H, one speed along a
+strand), as the constraint forces of the disc's higher pair.  The normal force of a disc
+on a line is that of the slider that keeps its centre on the line's parallel.
 """
 from __future__ import annotations
 
@@ -17,6 +31,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkcli.forces import motion as dyn_mod
+from linkcli.kinematics.contacts import carrier_axis
+from linkcli.model.mechanism import FRAME
 
 
 @dataclass
@@ -70,3 +86,52 @@ def _block_pair(mech, dyn, block, pos) -> PairForce:
         at = at - disc.radius * n
     return PairForce(block.name, "disc" if disc else "slider", None, None, None, u, n, at,
                      on=block.name, carrier=block.guide.carrier)
+
+
+def line_direction(mech, r, pos):
+    """The unit direction u of the line a disc rolls on: fixed, or turning with its body
+    (the figure's direction turned as the body's axis b -> c has)."""
+    if r.kind != "line" or r.carrier == FRAME:
+        return r.direction
+    figure = {**mech.fixed, **mech.moving}
+    b, c, _ = carrier_axis(mech, r.carrier)
+    return r.direction * unit(pos[c] - pos[b]) / unit(figure[c] - figure[b])
+
+
+def contact_actions(mech, r, pos) -> list[tuple]:
+    """[(target, unit force, point)] of contact ``r``'s unknown F = 1 (module docstring):
+    the target a body (FRAME: none), or ('pin', P) for the end of a cord."""
+    c = pos[r.center]
+    if r.kind == "line":
+        u = line_direction(mech, r, pos)
+        h = c + r.side * r.radius * 1j * u
+        return [(r.disc, u, h), (r.carrier, -u, h)]
+    if r.kind in ("cord", "belt"):
+        u = r.direction
+        out = [(r.disc, u, c + r.side * r.radius * 1j * u)]
+        if r.kind == "cord":
+            return out + [(("pin", r.point), -u, pos[r.point])]
+        far = pos[r.track] + r.other_side * r.track_radius * 1j * u
+        return out + [(r.other, -u, far)]
+    e = unit(c - pos[r.track])
+    h = c + (r.radius if r.inside else -r.radius) * e
+    return [(r.disc, 1j * e, h), (FRAME if r.kind == "circle" else r.other, -1j * e, h)]
+
+
+def hub(mech, r, pos):
+    """(slider, sign) whose normal force is the contact's (sign: N_contact = sign N_slider):
+    a slider of the centre on a guide of the line's body, parallel to the line; None
+    when no slider holds the centre on the line (links hold it)."""
+    if r.kind != "line":
+        return None
+    u = line_direction(mech, r, pos)
+    n = -r.side * 1j * u               # from the contact to the centre
+    for body in mech.bodies.values():
+        if body.kind != "block" or r.center not in body.points or \
+                body.guide.carrier.split(".")[0] != r.carrier:
+            continue
+        g = unit(dyn_mod.guide_axis(mech, body.guide, pos))
+        along = np.real(np.conj(1j * g) * n)
+        if np.all(np.abs(np.abs(along) - 1) < 1e-9):
+            return body.name, np.sign(along)
+    return None

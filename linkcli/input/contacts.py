@@ -2,6 +2,8 @@
 
     rolling:
       r1: {disc: wheel, radius: 100, on: {line: x, side: left}}     # on a fixed line along x
+      r4: {disc: wheel, radius: 100, on: {line: x, side: left, body: cart}}   # cart's floor
+      r5: {disc: wheel, radius: 100, on: {line: [F1, F2], body: cart}}  # through F1, F2 of cart
       r2: {disc: wheel, radius: 100, on: {circle: O, radius: 500}}  # inside or outside a track
       r3: {disc: planet, radius: 50, on: {disc: sun, radius: 150}}  # on another disc
     cords:
@@ -9,14 +11,19 @@
       b1: {pulley: drum, radius: 80, along: x, side: right,         # a belt strand from drum
            to: {disc: wheel, radius: 40, side: right}}              # to the disc wheel
 
-The disc (or pulley) is a link whose first point is its centre.  Whether a
-disc is inside or outside a circle is read from the figure unless ``inside``
-is given; a cord must be taut and tangent in the figure.
+The disc (or pulley) is a link whose first point is its centre; it may have any number of
+contacts and cords.  A line belongs to the frame unless ``body`` names the link or slider
+that carries it; a line through points of a moving body, or under a centre that rides on a
+moving body's guide (and on no fixed guide along the line), must name its body
+(``body: frame`` for the ground).  Whether a disc is
+inside or outside a circle is read from the figure unless ``inside`` is given; a cord must
+be taut and tangent in the figure, a line through two points tangent to the disc.
 """
 from __future__ import annotations
 
+
 from linkcli.model.exact import cis
-from linkcli.model.mechanism import Rolling
+from linkcli.model.mechanism import FRAME, Rolling
 
 SIDES = {"left": 1, "right": -1}
 #: relative tolerance of the figure checks (the figure is approximate)
@@ -40,13 +47,6 @@ class ContactsSection:
                 entry = self.block(reader, name, value, path, units, bodies, figure)
                 if entry is not None:
                     out[name] = entry
-        used = {}
-        for entry in out.values():
-            if entry.disc in used:
-                self.error(("rolling" if entry.kind != "cord" else "cords", entry.name),
-                           f"disc {entry.disc} already rolls ({used[entry.disc]})",
-                           hint="a disc has one rolling contact or cord")
-            used[entry.disc] = entry.name
         return out
 
     def disc_body(self, value, path, bodies):
@@ -65,7 +65,7 @@ class ContactsSection:
 
     def side(self, spec, path) -> int:
         side = spec.get("side", "left")
-        if side not in SIDES:
+        if not isinstance(side, str) or side not in SIDES:
             raise self.error(path + ("side",), f"side is 'left' or 'right', got {side!r}")
         return SIDES[side]
 
@@ -80,10 +80,21 @@ class ContactsSection:
             raise self.error(path + ("on",), "give one of line, circle, disc")
         where = path + ("on",)
         if kinds[0] == "line":
-            self.mapping(on, where, {"line", "side"})
-            u = self.direction(on["line"], where + ("line",), units)
+            self.mapping(on, where, {"line", "side", "body"})
+            carrier = self.line_body(on, where, bodies, disc)
+            side = self.side(on, where)
+            if isinstance(on["line"], list):
+                if carrier is None:
+                    carrier = self.owner(self.pair(on["line"], where + ("line",), set(figure)),
+                                         where, bodies)
+                u = self.line_through(on["line"], where, bodies, figure, carrier,
+                                      (figure[center], radius, side))
+            else:
+                u = self.direction(on["line"], where + ("line",), units)
+            if carrier is None:
+                carrier = self.ground(center, where, bodies, u, figure)
             # the centre is on `side` of the line: the contact is on the other side
-            return Rolling(name, disc, center, radius, "line", u, -self.side(on, where))
+            return Rolling(name, disc, center, radius, "line", u, -side, carrier=carrier)
         allowed = {"circle", "disc", "radius", "inside"}
         self.mapping(on, where, allowed, ("radius",))
         track_radius = self.positive(on["radius"], where + ("radius",), units)
@@ -98,6 +109,75 @@ class ContactsSection:
         inside = self.inside(on, where, figure[center], figure[track], radius, track_radius)
         return Rolling(name, disc, center, radius, kinds[0], track=track,
                        track_radius=track_radius, inside=inside, other=other)
+
+    def line_body(self, on, where, bodies, disc):
+        """The body ``body:`` names as the line's (FRAME for the ground), None when absent."""
+        if "body" not in on:
+            return None
+        carriers = {n for n, b in bodies.items() if b.kind in ("link", "block")} - {disc}
+        name = on["body"]
+        if name == FRAME:
+            return FRAME
+        if name == disc:
+            raise self.error(where + ("body",), "a disc cannot roll on itself")
+        return self.name(name, where + ("body",), carriers, "link or slider")
+
+    def line_through(self, ends, where, bodies, figure, carrier, disc) -> complex:
+        """The direction P -> Q of a line through two points, which must be the named
+        body's (fixed points for the frame) and tangent to the disc in the figure."""
+        p, q = self.pair(ends, where + ("line",), set(figure))
+        if carrier is not None:
+            own = self.fixed_points if carrier == FRAME else set(bodies[carrier].points)
+            for i, x in enumerate((p, q)):
+                if x not in own:
+                    raise self.error(where + ("line", i), f"point {x} is not a point of "
+                                     f"{'the frame' if carrier == FRAME else carrier}",
+                                     hint=f"a line of {carrier} passes through its own points")
+        z = figure[q] - figure[p]
+        u = z / abs(z)
+        centre, radius, side = disc
+        height = ((centre - figure[p]) * u.conjugate()).imag * side
+        if abs(height - radius) > FIGURE_TOL * max(radius, abs(z)):
+            unit, f = self.length_unit
+            raise self.error(where, f"the disc does not touch the line {p}{q} in the figure: "
+                             f"its centre is {height / f:.6g} {unit} from it on the "
+                             f"{'left' if side > 0 else 'right'}, the radius is "
+                             f"{radius / f:.6g} {unit}", hint="check 'side', the radius and the "
+                             "figure's positions")
+        return u
+
+    def owner(self, ends, where, bodies) -> str:
+        """The frame, for a line through two fixed points; else the line moves with a body
+        it passes through, which the file must name."""
+        p, q = ends
+        if p in self.fixed_points and q in self.fixed_points:
+            return FRAME
+        movers = sorted(n for n, b in bodies.items() if {p, q} & set(b.points))
+        raise self.error(where, f"the line {p}{q} moves with "
+                         f"{' or '.join(movers) or 'the moving points'}: say which body it "
+                         "belongs to", hint=f"body: {movers[0] if movers else 'NAME'} for "
+                         "a line of that body; a disc rolls on the ground only on a line of "
+                         "fixed points")
+
+    def ground(self, center, where, bodies, u, figure) -> str:
+        """FRAME for a line given by its direction ``u``, unless the disc's centre rides on a
+        guide carried by a moving body and on no fixed guide along u: then the line may be
+        that body's floor, and the file must say which."""
+        blocks = [b for b in bodies.values() if b.kind == "block" and center in b.points]
+        for b in blocks:
+            if b.guide.carrier != FRAME:
+                continue
+            axis = figure[b.guide.c] - figure[b.guide.b]
+            if abs((axis / abs(axis) * u.conjugate()).imag) < FIGURE_TOL:
+                return FRAME        # the centre runs on the ground's parallel: the ground
+        for b in blocks:
+            if b.guide.carrier != FRAME:
+                carrier = b.guide.carrier.split(".")[0]
+                raise self.error(where, f"the centre {center} rides on a guide of {carrier} "
+                                 f"(slider {b.name}): does the disc roll on {carrier} or on "
+                                 "the ground?", hint=f"body: {carrier} for a line of "
+                                 f"{carrier} (its floor), body: frame for the ground")
+        return FRAME
 
     def inside(self, on, path, c, o, r, big) -> bool:
         """Inside or outside the track: given, or the figure's distance |C - O| nearer

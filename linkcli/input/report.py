@@ -18,7 +18,7 @@ GEOMETRY = ("angle", "length", "x", "y", "load", "speed", "acceleration",
             "tangential_acceleration", "normal_acceleration", "along", "normal_to", "relative",
             "relative_speed", "relative_acceleration", "rotation", "between", "instant_centre",
             "instant_centre_distance", "reaction", "slider_force", "velocity_ratio",
-            "least_speed", "least_speed_at")
+            "least_speed", "least_speed_at", "tension", "contact_force")
 OF_POINT = ("speed", "acceleration", "tangential_acceleration", "normal_acceleration")
 OF_PAIR = ("relative", "relative_speed", "relative_acceleration")
 #: of the line through two points of one body: its point of least speed and that speed
@@ -26,7 +26,10 @@ ON_BODY = ("least_speed", "least_speed_at")
 PROJECTIONS = ("along", "normal_to")
 ANGULAR = ("angle", "rotation", "between")
 COMPONENTS = {"relative": ("x", "y"), "instant_centre": ("x", "y"),
-              "reaction": ("x", "y", "magnitude"), "slider_force": ("normal", "friction")}
+              "reaction": ("x", "y", "magnitude", "along", "normal"),
+              "slider_force": ("normal", "friction"), "contact_force": ("normal", "friction")}
+#: the components of a joint force that are projections on an axis (``axis:``)
+PROJECTED = ("along", "normal")
 #: quantities whose value is itself a rate: a speed is listed with the velocities (its
 #: rate with the accelerations), an acceleration with the accelerations
 LEVEL = {"speed": 1, "relative_speed": 1, "acceleration": 2, "tangential_acceleration": 2,
@@ -36,7 +39,7 @@ EITHER = ("instant_centre", "instant_centre_distance", "velocity_ratio", "least_
 #: the limits of the motion that are of a position quantity (its dead centres)
 STROKES = ("stroke", "time_ratio", "stroke_time")
 #: forces, listed with the statics
-FORCES = ("load", "reaction", "slider_force")
+FORCES = ("load", "reaction", "slider_force", "tension", "contact_force")
 #: the quantities a velocity ratio may be of: those whose rate is linear in the velocities
 RATIO_OF = ("q", "x", "y", "angle", "length", "along", "normal_to", "relative", "rotation",
             "between")
@@ -74,6 +77,18 @@ def _bases(name: str) -> list[str]:
     """Every name of which ``name`` may be a rate (or which it is)."""
     return [split_base(name, order) for order in RATES
             if name.endswith(SUFFIX[order]) and len(name) > len(SUFFIX[order])]
+
+
+def _halves(bodies: dict) -> dict:
+    """The halves of each actuator as bodies a pin acts on: NAME.cylinder holds the
+    actuator's first point, NAME.rod its second (``bodies`` as :meth:`raw_bodies`)."""
+    out = {}
+    for name, (kind, points) in bodies.items():
+        if kind == "actuator":
+            ends = points if points is not None and len(points) == 2 else (None, None)
+            out[name + ".cylinder"] = ("cylinder", None if ends[0] is None else (ends[0],))
+            out[name + ".rod"] = ("rod", None if ends[1] is None else (ends[1],))
+    return out
 
 
 def _same(q: Quantity, automatic: Quantity) -> bool:
@@ -235,7 +250,7 @@ class AnswersSection:
         if isinstance(value, dict) and EXPR in value:
             return self.expression_quantity(name, value, path)
         value = self.mapping(value, path, set(GEOMETRY) | {"component", "unit", "point",
-                                                           "signed"})
+                                                           "signed", "axis"})
         kinds = [k for k in GEOMETRY if k in value]
         if len(kinds) != 1:
             if len(kinds) > 1 and set(kinds) <= set(GEOMETRY[:5]):
@@ -248,7 +263,8 @@ class AnswersSection:
         if unit is not None and not isinstance(unit, str):
             raise self.error(path + ("unit",), f"unit is a unit name, got {unit!r}")
         table = {"angle": ANGLE, "rotation": ANGLE, "between": ANGLE, "load": None,
-                 "reaction": FORCE, "slider_force": FORCE}.get(kind, LENGTH)
+                 "reaction": FORCE, "slider_force": FORCE, "tension": FORCE,
+                 "contact_force": FORCE}.get(kind, LENGTH)
         if kind == "load" and isinstance(value["load"], str) and value["load"] in loads:
             load = loads[value["load"]]   # the unit the results use for this load
             torque = load.kind == "torque" or load.kind == "driver" and (
@@ -269,6 +285,10 @@ class AnswersSection:
                                  f"{value['signed']!r}")
         if "point" in value and kind not in PROJECTIONS:
             raise self.error(path + ("point",), "'point' is for along and normal_to")
+        if "axis" in value and not (kind == "reaction" and value.get("component") in PROJECTED):
+            raise self.error(path + ("axis",), "'axis' is for the along and normal components "
+                             "of a reaction", hint="{reaction: [P, BODY], component: normal, "
+                             "axis: OTHER}")
         if kind in GEOMETRY[5:]:
             line = self.doc.line(path)
             return dataclasses.replace(self.textbook_quantity(name, kind, value, path, pool),
@@ -350,6 +370,8 @@ class AnswersSection:
             self.body(body, where + (0,), spinning, kind)
             return Quantity(name, kind, body, self.name(point, where + (1,), pool),
                             of=spinning[body][0])
+        if kind in ("tension", "contact_force"):
+            return Quantity(name, kind, self.contact(arg, where, kind), component=component)
         if kind == "slider_force":
             sliders = sorted(n for n, (what, _) in bodies.items() if what == "slider")
             self.name(arg, where, what="slider")
@@ -361,14 +383,61 @@ class AnswersSection:
         point = self.name(point, where + (0,), pool)
         fixed = set(self.doc.data.get("frame") or {}) if isinstance(
             self.doc.data.get("frame"), dict) else set()
-        pins = dict(bodies, **{FRAME: ("frame", tuple(sorted(fixed)))})
-        body = self.name(body, where + (1,), pins, "body")
+        pins = dict(bodies, **_halves(bodies), **{FRAME: ("frame", tuple(sorted(fixed)))})
+        body = self.body_name(body, where + (1,), pins)
         points = pins[body][1]
         if points is not None and point not in points:
             raise self.error(where + (0,), f"undefined point '{point}' on body '{body}'",
                              hint=f"{'its points' if body != FRAME else 'fixed points'}: "
                              + (", ".join(points) or "none"))
-        return Quantity(name, kind, point, body, component=component, of=pins[body][0])
+        axis = None
+        if component in PROJECTED:
+            axis = self.axis(value.get("axis"), path + ("axis",), pins, pool, body)
+        return Quantity(name, kind, point, body, component=component, of=pins[body][0],
+                        axis=axis)
+
+    def body_name(self, value, path, pins) -> str:
+        """A body a pin acts on: a link, slider or actuator, an actuator's half
+        (NAME.cylinder, NAME.rod) or the frame."""
+        if isinstance(value, str) and value in pins:
+            return value
+        if isinstance(value, str) and "." in value:
+            halves = sorted(n for n in pins if "." in n)
+            raise self.error(path, f"undefined body '{value}'", hint="an actuator's halves are "
+                             "NAME.cylinder and NAME.rod: " + (", ".join(halves) or "none"))
+        return self.name(value, path, {n for n in pins if "." not in n}, "body")
+
+    def axis(self, value, path, pins, pool, body) -> tuple:
+        """The direction a joint force is projected on: ('body', NAME) the axis of a body
+        (``axis: NAME``; by default the body the force acts on), ('points', P, Q) the vector
+        P -> Q (``axis: [P, Q]``) or ('angle', radians) a fixed direction
+        (``axis: {angle: A}``, counter-clockwise from +x)."""
+        if value is None:
+            if body == FRAME:
+                raise self.error(path[:-1], "the frame has no axis of its own: give the "
+                                 "direction of the component", hint="axis: BODY, axis: [P, Q] "
+                                 "or axis: {angle: A}")
+            return ("body", body)
+        if isinstance(value, list):
+            return ("points",) + self.pair(value, path, pool)
+        if isinstance(value, dict):
+            spec = self.mapping(value, path, {"angle"}, ("angle",))
+            return ("angle", self.number(spec["angle"], path + ("angle",), "angle",
+                                         self.file_units))
+        name = self.body_name(value, path, {n: v for n, v in pins.items() if n != FRAME})
+        return ("body", name)
+
+    def contact(self, arg, where, kind) -> str:
+        """A cord of ``cords:`` (a tension) or a rolling contact of ``rolling:``."""
+        data = self.doc.data if isinstance(self.doc.data, dict) else {}
+        key = "cords" if kind == "tension" else "rolling"
+        names = set(data.get(key) or {}) if isinstance(data.get(key), dict) else set()
+        self.name(arg, where, what="contact")
+        if arg not in names:
+            what = "cord" if kind == "tension" else "rolling contact"
+            raise self.error(where, f"'{arg}' is not a {what} of '{key}:'",
+                             hint=f"{key}: " + (", ".join(sorted(names)) or "none"))
+        return arg
 
     def two_names(self, arg, where, form):
         if not isinstance(arg, list) or len(arg) != 2:

@@ -24,6 +24,7 @@ import numpy as np
 from linkcli.kinematics import dyads
 from linkcli.kinematics.dyads import cross
 from linkcli.errors import AssemblyError, Caution, InputError, SingularError
+from linkcli.kinematics.contacts import Track
 from linkcli.kinematics.topology import Coord, Dist, Line, analyse
 
 SINGULAR = 1e-9
@@ -156,11 +157,9 @@ class Solver:
         self.cautions += self._ambiguous(figure) + self._far(self.mech)
 
     def _place_all(self, q):
-        """Positions at ``q`` with the chosen branches, setting the rolling references."""
+        """Positions at ``q`` with the chosen branches."""
         pos = dict(self.fixed)
         for group in self.groups:
-            if group.kind == "roll":
-                group.place = rolling_reference(group, pos, self.mech)
             if group.point is not None:
                 pos[group.point] = self._position(group, pos, q)[0]
         return pos
@@ -229,8 +228,6 @@ class Solver:
             group = groups[i]
             if group.kind in BRANCHED:
                 return i
-            if group.kind == "roll":
-                group.place = rolling_reference(group, pos, self.mech)
             if group.point is not None:
                 p, short, *_ = self._position(group, pos, q)
                 if _fails(short):
@@ -265,8 +262,6 @@ class Solver:
         """The text of the first group that cannot close at the figure's coordinates."""
         pos = dict(self.fixed)
         for group in self.groups:
-            if group.kind == "roll":
-                group.place = rolling_reference(group, pos, self.mech)
             if group.point is None:
                 continue
             p, short, *_ = self._position(group, pos, q)
@@ -284,8 +279,6 @@ class Solver:
         out = []
         pos = dict(self.fixed)
         for group in self.groups:
-            if group.kind == "roll":
-                group.place = rolling_reference(group, pos, self.mech)
             if group.kind in BRANCHED:
                 keep = group.branch
                 (d1, _, p1, _), (d2, _, p2, _) = self._candidates(group, pos, q)
@@ -335,10 +328,12 @@ class Solver:
                         mech.file, {p: d / f for p, d in far.items()})]
 
     # positions -------------------------------------------------------------------
-    def _position(self, group, pos, q):
+    def _position(self, group, pos, q, turns=None):
+        """(P, shortfall, ...) of the group's point; ``turns`` collects the discs' turns
+        (:meth:`_roll_position`), which contacts solved later read."""
         kind = group.kind
         if kind == "roll":
-            return self._roll_position(group, pos), None
+            return self._roll_position(group, pos, q, turns), None
         if kind == "place":
             k, m, n, w = group.place
             return pos[k] + (pos[m] - pos[n]) * w, None
@@ -367,13 +362,15 @@ class Solver:
                                        self._length(c2, q), group.branch, flat=True)
         if kind in ("RRP", "PRR"):
             dist, line = (c1, c2) if kind == "RRP" else (c2, c1)
-            return dyads.circle_line(pos[dist.a], self._length(dist, q), pos[line.b],
-                                     pos[line.c], line.value, group.branch, flat=True,
-                                     frame=self._frame(line))
+            b, c, value = _guide_of(line, pos, q, turns)
+            return dyads.circle_line(pos[dist.a], self._length(dist, q), b, c, value,
+                                     group.branch, flat=True, frame=self._frame(line))
         if kind in ("PRP", "RPP"):         # a point on two lines (RPP: module topology)
-            u1, e1 = dyads.line_frame(pos[c1.b], pos[c1.c], c1.value)
-            u2, e2 = dyads.line_frame(pos[c2.b], pos[c2.c], c2.value)
-            p, parallel = dyads.line_line(pos[c1.b], u1, e1, pos[c2.b], u2, e2)
+            b1, g1, v1 = _guide_of(c1, pos, q, turns)
+            b2, g2, v2 = _guide_of(c2, pos, q, turns)
+            u1, e1 = dyads.line_frame(b1, g1, v1)
+            u2, e2 = dyads.line_frame(b2, g2, v2)
+            p, parallel = dyads.line_line(b1, u1, e1, b2, u2, e2)
             return p, np.where(parallel, np.inf, 0.0)
         if kind == "RPR":
             return dyads.slotted(pos[c1.a], c1.length, pos[c2.p], c2.value, group.branch,
@@ -382,6 +379,8 @@ class Solver:
 
     def _frame(self, line):
         """The (u, e) of a line whose points are fixed (kept), None for a moving one."""
+        if isinstance(line, Track):
+            return None
         key = (line.b, line.c, line.value)
         frame = self._frames.get(key)
         if frame is None and line.b in self.fixed and line.c in self.fixed:
@@ -389,14 +388,19 @@ class Solver:
                                                          self.fixed[line.c], line.value)
         return frame
 
-    def _roll_position(self, group, pos):
-        """The marker M = C + d e^{i (theta0 + sum c_k (mu_k - mu_k0))} of a rolling disc."""
-        r = group.constraints[0]
-        arm, theta0, terms = group.place
-        theta = theta0
-        for term, c, mu0 in terms:
-            theta = theta + c * term.relative(pos, mu0)
-        return pos[r.center] + arm * np.exp(1j * theta)
+    def _roll_position(self, group, pos, q, turns=None):
+        """The second point M = C + |M - C| e^{i theta} of a disc a contact turns: the
+        relation sum c_k (mu_k - mu_k0) = 0 (kinematics.contacts) solved for the disc's turn,
+        theta - theta0 = -(sum of the other terms) / c, theta0 the figure's.  The turn is
+        kept in ``turns`` (any number of turns) for the contacts solved after it."""
+        rel, turn = group.constraints
+        body = self.mech.bodies[group.bodies[0]]
+        arm = abs(body.local[turn.b] - body.local[turn.a])
+        ref = next(ref for t, _, ref in rel.terms if t is turn)
+        theta = -rel.residual(pos, q, turns, skip=turn) / rel.coefficient(turn)
+        if turns is not None:
+            turns[(turn.a, turn.b)] = theta
+        return pos[turn.a] + (arm * ref) * np.exp(1j * theta)
 
     @staticmethod
     def _length(dist, q):
@@ -421,10 +425,11 @@ class Solver:
         q = qs
         pos = kin.pos
         pos.update(self.fixed)
+        turns = {}
         for index, group in enumerate(self.groups):
             if group.point is None:
                 continue
-            p, short, *flat = self._position(group, pos, q)
+            p, short, *flat = self._position(group, pos, q, turns)
             pos[group.point] = p
             if short is not None and (type(short) is not float or short != 0.0):
                 kin.short[index] = short        # (the number 0.0: every position closes)
@@ -463,12 +468,14 @@ class Solver:
         if group.kind == "driver-angle":
             return DriverRates(index, group, self.fixed)
         if group.kind in ("place", "roll"):
-            return lambda kin, d, qrate, vel: self._rate(group, kin, d, vel)
+            return lambda kin, d, qrate, vel: self._rate(group, kin, d, qrate, vel)
         return DyadRates(index, group, self.fixed)
 
-    def _rate(self, group, kin, d, vel):
-        """First (vel None) or second time derivative of the point of a placed point or a
-        rolling disc's marker.
+    def _rate(self, group, kin, d, qrate, vel):
+        """First (vel None) or second time derivative of the point of a placed point or of
+        a disc's second point M, turned by a contact: omega = -(sum of the other terms'
+        rates) / c (the same of their second rates for alpha), M' = C' + i omega (M - C),
+        M'' = C'' + (i alpha - omega^2) (M - C).
 
         ``d`` holds the rates found so far; the group's own point is not in it
         yet, so every rate read from ``d`` is a known one.
@@ -477,14 +484,15 @@ class Solver:
         if group.kind == "place":
             k, m, n, w = group.place
             return _get(d, k) + (_get(d, m) - _get(d, n)) * w
-        r = group.constraints[0]
-        _, _, terms = group.place
-        arm = pos[group.point] - pos[r.center]
-        omega = sum(c * term.rate(pos, kin.vel if vel is not None else d) for term, c, _ in terms)
+        rel, turn = group.constraints
+        arm = pos[group.point] - pos[turn.a]
+        c = rel.coefficient(turn)
         if vel is None:
-            return _get(d, r.center) + 1j * omega * arm
-        alpha = sum(c * term.accel(pos, vel, d) for term, c, _ in terms)
-        return _get(d, r.center) + (1j * alpha - omega * omega) * arm
+            omega = -rel.rate(pos, d, qrate, skip=turn) / c
+            return _get(d, turn.a) + 1j * omega * arm
+        omega = -rel.rate(pos, vel, kin.rates, skip=turn) / c
+        alpha = -rel.accel(pos, vel, d, qrate, skip=turn) / c
+        return _get(d, turn.a) + (1j * alpha - omega * omega) * arm
 
     def rate_system(self, index, kin, order):
         """The 2x2 rate system of dyad ``index`` as solved at ``kin`` (rates of ``order``
@@ -623,6 +631,8 @@ def _rhs_of(c, unknown, fixed):
     point runs, gives 0."""
     if isinstance(c, Dist):
         return _dist_rhs(c, fixed)
+    if isinstance(c, Track):
+        return lambda g, kin, d, qrate, vel: c.rhs(kin.pos, d, qrate, vel)
     if fixed_guide(c, unknown, fixed):
         return _no_rhs
     if isinstance(c, Coord):
@@ -662,104 +672,6 @@ def _dist_rhs(c, fixed):
                 r = r + 2.0 * kin.rates[j] * kin.rates[j]
         return r
     return rhs
-
-
-# --- rolling contacts -------------------------------------------------------------------
-@dataclass(frozen=True)
-class Along:
-    """mu = Re(conj(u) (P_a - P_b)) (``b`` None: of P_a alone); linear in the points."""
-
-    u: complex
-    a: str
-    b: str | None = None
-
-    def value(self, pos):
-        z = pos[self.a] - (pos[self.b] if self.b else 0)
-        return (np.conj(self.u) * z).real
-
-    def relative(self, pos, mu0):
-        return self.value(pos) - mu0
-
-    def rate(self, pos, d):
-        return (np.conj(self.u) * (_get(d, self.a) - (_get(d, self.b) if self.b else 0))).real
-
-    def accel(self, pos, vel, acc):
-        return self.rate(pos, acc)
-
-
-@dataclass(frozen=True)
-class AngleOf:
-    """mu = arg(P_b - P_a), measured from its figure value within half a turn."""
-
-    a: str
-    b: str
-
-    def value(self, pos):
-        return pos[self.b] - pos[self.a]
-
-    def relative(self, pos, z0):
-        return np.angle(self.value(pos) * np.conj(z0))
-
-    def rate(self, pos, d):
-        return ((_get(d, self.b) - _get(d, self.a)) / self.value(pos)).imag
-
-    def accel(self, pos, vel, acc):
-        z = self.value(pos)
-        w = (_get(vel, self.b) - _get(vel, self.a)) / z
-        return ((_get(acc, self.b) - _get(acc, self.a)) / z - w * w).imag
-
-
-def rolling_terms(r, mech):
-    """[(measure, coefficient)] with omega_disc = sum c mu' (see ``model.Rolling``)."""
-    if r.kind == "line":
-        return [(Along(r.direction, r.center), r.side / r.radius)]
-    if r.kind == "cord":
-        return [(Along(r.direction, r.center, r.point), r.side / r.radius)]
-    if r.kind == "belt":
-        other = mech.bodies[r.other]
-        return [(Along(r.direction, r.center, r.track), r.side / r.radius),
-                (AngleOf(other.points[0], other.points[1]),
-                 r.side * r.other_side * r.track_radius / r.radius)]
-    ratio = -(r.track_radius - r.radius) / r.radius if r.inside else \
-        (r.track_radius + r.radius) / r.radius
-    terms = [(AngleOf(r.track, r.center), ratio)]
-    if r.kind == "disc":
-        other = mech.bodies[r.other]
-        spin = (1.0 if r.inside else -1.0) * r.track_radius / r.radius
-        terms.append((AngleOf(other.points[0], other.points[1]), spin))
-    return terms
-
-
-def rolling_reference(group, pos, mech):
-    """(arm, theta0, [(measure, c, mu0)]) of a rolling disc from the assembled figure:
-    the marker's distance and figure angle about the centre, each measure's figure value."""
-    r = group.constraints[0]
-    body = mech.bodies[r.disc]
-    marker = group.point
-    arm = abs(body.local[marker] - body.local[r.center])
-    centre = complex(np.ravel(pos[r.center])[0])
-    theta0 = np.angle(mech.moving.get(marker, mech.fixed.get(marker, 0j)) - centre)
-    first = _FirstPositions(pos)
-    return arm, theta0, [(term, c, term.value(first)) for term, c in rolling_terms(r, mech)]
-
-
-class _FirstPositions(dict):
-    """The first position of each point of ``pos`` (a complex number), read when asked: a
-    disc's reference reads two or three points, not every point placed before it."""
-
-    def __init__(self, pos):
-        super().__init__()
-        self.pos = pos
-
-    def __missing__(self, key):
-        value = self[key] = complex(np.ravel(self.pos[key])[0])
-        return value
-
-    def get(self, key, default=None):
-        return self[key] if key in self.pos else default
-
-    def __contains__(self, key):
-        return key in self.pos
 
 
 def assembly_error(mech, group, q, bad, worst, reason) -> AssemblyError:
@@ -868,6 +780,8 @@ def _grad_of(c, unknown, fixed):
     if isinstance(c, Dist):
         p, a = c.p, c.a
         return lambda pos: 2.0 * (pos[p] - pos[a])
+    if isinstance(c, Track):
+        return c.grad
     if fixed_guide(c, unknown, fixed):
         return _grad(c, fixed, unknown)
     if isinstance(c, Line):
@@ -879,6 +793,8 @@ def _grad(c, pos, unknown):
     """Gradient of constraint ``c`` with respect to point ``unknown`` (complex)."""
     if isinstance(c, Dist):
         return 2.0 * (pos[c.p] - pos[c.a])
+    if isinstance(c, Track):
+        return c.grad(pos)
     if isinstance(c, Line):
         if unknown == c.p:
             return 1j * (pos[c.c] - pos[c.b])
@@ -913,6 +829,13 @@ def _line_rhs(c, pos, d, vel):
     return r
 
 
+def _guide_of(c, pos, q, turns=None):
+    """(B, C, value) of a dyad's line: a guide's points, or a contact's line (Track)."""
+    if isinstance(c, Track):
+        return c.line(pos, q, turns)
+    return pos[c.b], pos[c.c], c.value
+
+
 def _combine(r1, k1, r2, k2):
     """r1 K1 + r2 K2 (complex K), skipping terms whose r is a zero scalar; a zero is +0,
     as 0 + r1 K1 + r2 K2 gives."""
@@ -941,6 +864,8 @@ def residuals(solver: Solver, kin: Kinematics) -> dict:
                 value = np.abs(pos[c.p] - pos[c.a]) ** 2 - length ** 2
             elif isinstance(c, Line):
                 value = cross(pos[c.c] - pos[c.b], pos[c.p] - pos[c.b]) - c.value
+            elif isinstance(c, Track):
+                value = c.relation.residual(pos, kin.coords)
             else:
                 p = pos[c.p]
                 value = (p.real if c.axis == "x" else p.imag) - kin.coords[c.coord]

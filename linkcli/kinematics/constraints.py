@@ -8,11 +8,17 @@ length scale), so its gradient is analytic:
 
 and the Jacobian J = dg/dX is dimensionless.  Velocities solve J v = -dg/dq qdot;
 accelerations J a = -(d2g/dt2 without the unknown accelerations).
+
+Each rolling contact or cord adds the row g = a wrap(sum c_k (mu_k - mu_k0)) of its
+relation (``kinematics.contacts``; a the arm |M - C| of its disc, so that g is a length;
+wrapped to half a turn, so that the disc may turn any number of times), with
+dg = a sum_P Re(conj(G_P) dP).
 """
 from __future__ import annotations
 
 import numpy as np
 
+from linkcli.kinematics.contacts import relations
 from linkcli.kinematics.dyads import cis
 from linkcli.kinematics.equations import ONE, ZERO, mechanism_rows
 from linkcli.errors import StructureError
@@ -26,6 +32,7 @@ class Constraints:
         self._name_points(mech)
         rows, lengths = mechanism_rows(mech, {name: i for i, name in enumerate(self.names)})
         self.rows = [r for r in rows if self._moves(r)]
+        self.contacts = [(rel, _arm(mech, rel)) for rel in relations(mech).values()]
         self.n = 2 * self.nm
         self._require_square()
         self._stack(self.rows)
@@ -47,9 +54,10 @@ class Constraints:
         return any(self.nf <= i < self.nf + self.nm for i in (row.b, row.c, row.a, row.p))
 
     def _require_square(self):
-        if len(self.rows) != self.n:
+        count = len(self.rows) + len(self.contacts)
+        if count != self.n:
             raise StructureError(
-                f"the point equations are not square: {len(self.rows)} equations for {self.n} "
+                f"the point equations are not square: {count} equations for {self.n} "
                 "unknown coordinates", file=self.mech.file,
                 hint="every moving point must belong to a link or a slider that fixes it")
 
@@ -100,7 +108,8 @@ class Constraints:
 
     def residual(self, X, q):
         """Scaled residuals (N, R), lengths."""
-        return self._residual(*self._uv(self.points(X), q), q)
+        P = self.points(X)
+        return self._with_contacts(self._residual(*self._uv(P, q), q), P, q)
 
     def jacobian(self, P, q, U=None, V=None):
         """Scaled Jacobian (N, R, n) of the residuals with respect to the unknowns."""
@@ -109,13 +118,43 @@ class Constraints:
         kV = self.k * V * self.inv_scale
         kU = self.k.conj() * U * self.inv_scale
         src = np.concatenate([kV.real, kV.imag, kU.real, kU.imag], axis=1)
-        return (src @ self.scatter).reshape(P.shape[0], len(self.rows), self.n)
+        J = (src @ self.scatter).reshape(P.shape[0], len(self.rows), self.n)
+        if not self.contacts:
+            return J
+        return np.concatenate([J, self._contact_jacobian(P)], axis=1)
 
     def system(self, X, q):
         """Residuals and Jacobian at once."""
         P = self.points(X)
         U, V = self._uv(P, q)
-        return self._residual(U, V, q), self.jacobian(P, q, U, V)
+        return self._with_contacts(self._residual(U, V, q), P, q), self.jacobian(P, q, U, V)
+
+    # contacts -------------------------------------------------------------------
+    def _named(self, P):
+        """{point name: its column of P} (N,) for the contacts' measures."""
+        return {name: P[:, i] for i, name in enumerate(self.names)}
+
+    def _with_contacts(self, g, P, q):
+        """The residuals (N, R) followed by each contact's a wrap(sum c_k (mu_k - mu_k0))."""
+        if not self.contacts:
+            return g
+        pos = self._named(P)
+        rows = [arm * np.angle(np.exp(1j * rel.residual(pos, (q,)))) for rel, arm in
+                self.contacts]
+        return np.concatenate([g, np.stack(rows, axis=1)], axis=1)
+
+    def _contact_jacobian(self, P):
+        """(N, C, n): a [Re G_P, Im G_P] in the columns of each moving point P."""
+        pos = self._named(P)
+        out = np.zeros((P.shape[0], len(self.contacts), self.n))
+        for row, (rel, arm) in enumerate(self.contacts):
+            for name in rel.points():
+                j = self.names.index(name) - self.nf
+                if 0 <= j < self.nm:
+                    g = arm * np.broadcast_to(rel.grad(pos, name), (P.shape[0],))
+                    out[:, row, 2 * j] += g.real
+                    out[:, row, 2 * j + 1] += g.imag
+        return out
 
     # rates --------------------------------------------------------------------
     def rate_rhs(self, P, q, qd, qdd=None, W=None):
@@ -131,7 +170,18 @@ class Constraints:
             known = self._first_rate(V, q, qd, e)
         else:
             known = self._second_rate(V, W, q, qd, np.broadcast_to(qdd, q.shape), e)
-        return -known * self.inv_scale
+        rhs = -known * self.inv_scale
+        if not self.contacts:
+            return rhs
+        pos = self._named(P)
+        if W is None:       # only a turn that is the driver has a known rate
+            rows = [-arm * rel.rate(pos, {}, (qd,)) for rel, arm in self.contacts]
+        else:               # the quadratic parts, and the driver's turn
+            vel = self._named(W)
+            rows = [-arm * rel.accel(pos, vel, {}, (np.broadcast_to(qdd, q.shape),))
+                    for rel, arm in self.contacts]
+        rows = [np.broadcast_to(r, q.shape) for r in rows]
+        return np.concatenate([rhs, np.stack(rows, axis=1)], axis=1)
 
     def _first_rate(self, V, q, qd, e):
         """dg/dt without the unknown velocities: Re(k conj(i qd e^{iq}) V) - v'(q)."""
@@ -162,3 +212,9 @@ class Constraints:
         """|det J| / prod(|row|): 0 when singular, 1 when the rows are orthogonal."""
         norms = np.prod(np.linalg.norm(J, axis=2), axis=1)
         return np.abs(np.linalg.det(J)) / np.where(norms > 0, norms, 1.0)
+
+
+def _arm(mech, rel) -> float:
+    """|M - C| of the disc a contact turns: the length its residual is measured in."""
+    body = mech.bodies[rel.disc]
+    return abs(body.local[body.points[1]] - body.local[body.points[0]]) or 1.0

@@ -28,10 +28,6 @@ def solver_for(mech, method="closed", tol=None):
         if key not in cache:
             cache[key] = _closed(mech)
         return cache[key]
-    if mech.rolling:
-        raise StructureError("the Newton method does not model rolling contacts and cords "
-                             f"({', '.join(mech.rolling)})", file=mech.file,
-                             hint="solve with the closed form (--method closed)")
     from linkcli.kinematics.newton import DEFAULT_TOL, NewtonSolver
     key = ("newton", DEFAULT_TOL if tol is None else float(tol))
     if key not in cache:

@@ -8,10 +8,14 @@ the file's parameters, as the closed-form solver computes it:
     driver-angle   P = A + L (cos q, sin q)              (-L when the vector runs P -> A)
     driver-coord   x_P = q (or y_P = q) on the guide cross(C - B, P - B) = c
     place          P = K + (M - N) w                      (w complex, fixed in the body)
-    roll           P = C + d (cos theta, sin theta),  theta = theta_0 + sum c_k (mu_k - mu_k0)
+    roll           P = C + d (cos theta, sin theta),  theta = theta_0 - sum' c_k (mu_k - mu_k0) / c
 
-with mu_k the rolling contact's measures (``closed_form.rolling_terms``) and the
-_0 values those of the figure.  A dyad (RRR, RRP, PRR, PRP, RPR, RPP) closes a loop:
+with mu_k the measures of the contact's relation sum c_k (mu_k - mu_k0) = 0
+(``kinematics.contacts``; sum' leaves out the disc's own turn, of coefficient c) and the
+_0 values those of the figure.  Two groups of the dyads' kinds have one too: a point on
+two lines, each a guide or a contact's relation linear in it (a cord's end on its guide:
+two linear equations), and a point at a length along a guide through the length's centre
+(P = A + L (C - B) / |C - B|).  A dyad (RRR, RRP, PRR, PRP, RPR, RPP) closes a loop:
 its point is a root of closure equations whose solution in the parameters is no
 formula worth printing, so it is refused by name (:class:`NoClosedForm`); its
 closure equations in complex form are ``answers.symbolic``'s.
@@ -27,8 +31,8 @@ from dataclasses import dataclass, field
 import sympy as sp
 
 from linkcli.errors import SolveError
-from linkcli.kinematics.closed_form import AngleOf, Along, rolling_terms
-from linkcli.kinematics.topology import analyse
+from linkcli.kinematics.contacts import Along, Carried, Track, Turn
+from linkcli.kinematics.topology import Dist, Line, analyse
 from linkcli.model import exact
 
 
@@ -194,6 +198,13 @@ class Positions:
             return add(pos[k], times(sub(pos[m], pos[n]), s.point(w)))
         if kind == "roll":
             return self._roll(group)
+        if kind in ("PRP", "RPP") and all(self._linear(c, group.point)
+                                          for c in group.constraints):
+            return self._on_lines(group)
+        if kind in ("RRP", "PRR"):
+            along = self._along_guide(group)
+            if along is not None:
+                return along
         raise NoClosedForm(f"{group.describe()} closes a loop: its position is a root of its "
                            "closure equations, with no closed form in the parameters",
                            group=group, file=self.mech.file,
@@ -208,34 +219,101 @@ class Positions:
             return (q, b[1] + (value + d[1] * (q - b[0])) / d[0])
         return (b[0] + (d[0] * (q - b[1]) - value) / d[1], q)
 
+    def _linear(self, c, p) -> bool:
+        """Whether constraint ``c`` is a line in ``p`` whose other points are placed: a guide
+        cross(C - B, P - B) = value or a contact's relation linear in P (``Track``)."""
+        if isinstance(c, Track):
+            known = set(self.pos)
+            return all(term.linear(x, known) if x in c.rigid else x in known
+                       for term, _, _ in c.relation.terms for x in term.points)
+        return isinstance(c, Line) and c.p == p and c.b in self.pos and c.c in self.pos
+
+    def _along_guide(self, group):
+        """P at |P - A| = L on a guide through A (A one of the guide's points, the guide's
+        value 0): P = A + sign L (C - B) / |C - B|, the sign the figure's; None for a
+        circle that is not centred on its line (two crossings, no formula printed)."""
+        dist, line = group.constraints if isinstance(group.constraints[0], Dist) else \
+            group.constraints[::-1]
+        if not isinstance(line, Line) or line.p != group.point or dist.a not in (line.b, line.c) \
+                or not {line.b, line.c} <= set(self.pos) or self.s.num(line.value) != 0:
+            return None
+        s = self.s
+        direction = sub(self.pos[line.c], self.pos[line.b])
+        unit = length(direction, s)
+        size = s.q[dist.coord] if dist.length is None else s.num(dist.length)
+        drawn = s.point(self.mech.moving[group.point])
+        figure_a = tuple(s.at_figure(v) for v in self.pos[dist.a])
+        sign = 1 if s.value(dot(sub(drawn, figure_a),
+                                tuple(s.at_figure(v) for v in direction))).real >= 0 else -1
+        return add(self.pos[dist.a], (sign * size * direction[0] / unit,
+                                      sign * size * direction[1] / unit))
+
+    def _on_lines(self, group):
+        """P on two lines, each a guide or a contact's relation sum c_k (mu_k - mu_k0) = 0
+        linear in P (its slider's points moving with it): the two linear equations in
+        (x_P, y_P) solved."""
+        p = group.point
+        xy = (sp.Dummy("x"), sp.Dummy("y"))
+        drawn = self.s.point(self.mech.moving[p])
+        equations = []
+        for c in group.constraints:
+            if isinstance(c, Line):
+                b, cc = self.pos[c.b], self.pos[c.c]
+                equations.append(cross(sub(cc, b), sub(xy, b)) - self.s.num(c.value))
+                continue
+            moved, figure = dict(self.pos), {k: tuple(self.s.at_figure(v) for v in z)
+                                             for k, z in self.pos.items()}
+            for x, offset in c.rigid.items():
+                moved[x] = add(xy, self.s.point(offset))
+                figure[x] = add(drawn, self.s.point(offset))
+            total = 0
+            for term, k, _ in c.relation.terms:
+                mu = self.measure(term, moved)
+                total = total + self.s.num(k) * (mu - self.s.at_figure(self.measure(term, figure)))
+            equations.append(total)
+        solved = sp.solve(equations, xy, dict=True, rational=False)
+        if len(solved) != 1:
+            raise NoClosedForm(f"{group.describe()}: its two lines have no single crossing in "
+                               "the parameters", group=group, file=self.mech.file)
+        return tuple(sp.simplify(solved[0][v]) for v in xy)
+
     # rolling ---------------------------------------------------------------------------
     def measure(self, term, pos=None):
-        """A rolling contact's measure mu: Re(conj(u) (P_a - P_b)) or the angle of
-        P_b - P_a."""
+        """A contact's measure mu (``kinematics.contacts``): Re(conj(u) (P_a - P_b)), the
+        carried Re(conj(rho Z) (P_a - P_o)) / |Z|, or the angle of P_b - P_a (a
+        coordinate's own where the turn is one)."""
         pos = self.pos if pos is None else pos
         if isinstance(term, Along):
             z = pos[term.a] if term.b is None else sub(pos[term.a], pos[term.b])
             return dot(self.s.point(term.u), z)
-        assert isinstance(term, AngleOf)
+        if isinstance(term, Carried):
+            z = times(self.s.point(term.rho), sub(pos[term.c], pos[term.b]))
+            return dot(z, sub(pos[term.a], pos[term.o])) / self.s.num(term.length)
+        assert isinstance(term, Turn)
+        if term.coord is not None:
+            return self.s.q[term.coord]
         return self.angle_of(sub(pos[term.b], pos[term.a]))
 
     def angle_of(self, z):
         return angle(z, self.s, self.s.q)
 
     def _roll(self, group):
+        """The second point M = C + |M - C| (cos theta, sin theta) of a disc its contact
+        turns: theta - theta_0 = -(sum of the other terms c_k (mu_k - mu_k0)) / c."""
         s = self.s
-        r = group.constraints[0]
-        body = self.mech.bodies[r.disc]
-        marker = group.point
-        arm = s.num(abs(body.local[marker] - body.local[r.center]))
-        centre = self.pos[r.center]
+        rel, turn = group.constraints
+        body = self.mech.bodies[group.bodies[0]]
+        arm = s.num(abs(body.local[turn.b] - body.local[turn.a]))
         figure = {p: tuple(s.at_figure(c) for c in xy) for p, xy in self.pos.items()}
-        drawn = s.point(self.mech.moving.get(marker, self.mech.fixed.get(marker, 0j)))
-        theta = angle(sub(drawn, figure[r.center]), s)
-        for term, c in rolling_terms(r, self.mech):
-            mu = self.measure(term)
-            theta = theta + s.num(c) * (mu - s.at_figure(mu))
-        return add(centre, (arm * sp.cos(theta), arm * sp.sin(theta)))
+        drawn = s.point(self.mech.moving.get(turn.b, self.mech.fixed.get(turn.b, 0j)))
+        theta = angle(sub(drawn, figure[turn.a]), s)
+        rest = 0
+        for term, c, _ in rel.terms:
+            if term is not turn:
+                mu = self.measure(term)
+                rest = rest + s.num(c) * (mu - s.at_figure(mu))
+        theta = theta - rest / s.num(rel.coefficient(turn))
+        return add(self.pos[turn.a], (arm * sp.cos(theta), arm * sp.sin(theta)))
 
     # bodies -----------------------------------------------------------------------------
     def body_angle(self, name):
@@ -392,6 +470,10 @@ class Closures:
             return Closure(text, self.pos[other], None, point=other)
         if kind == "place":
             k, m, n, w = group.place
+            if not {k, m, n} <= set(self.pos):
+                return Closure(text, missing="its body's points follow from a group with no "
+                               "closure equation written: see its numbers in the worked "
+                               "solution")
             self.pos[group.point] = self.pos[k] + (self.pos[m] - self.pos[n]) * \
                 self._fixed(w)
             return Closure(text)

@@ -30,8 +30,12 @@ answer sheet never lists it, a worked solution names it as it is):
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from itertools import combinations
+
+import numpy as np
 
 from linkcli.errors import MobilityError, StructureError
+from linkcli.kinematics.contacts import Relation, Track, Turn, relations
 from linkcli.model.mechanism import FRAME, Mechanism
 
 
@@ -214,13 +218,18 @@ class _Decomposer:
         self.known_bodies = {FRAME}
         self.groups: list[Group] = []
         self.pending = dict(enumerate(mech.coordinates))
-        self.rolling_discs = {r.disc for r in mech.rolling.values()}
+        self.relations = relations(mech)   # contact -> Relation (kinematics.contacts)
+        self.consumed: set = set()         # contacts already used by a group
         self.driven: dict = {}             # {a, b} -> coordinate of a driving length
         self.done_actuators: set = set()
         self.bodies_at: dict = {}          # point -> the bodies it belongs to, in file order
         for body in mech.bodies.values():
             for p in body.points:
                 self.bodies_at.setdefault(p, []).append(body)
+        #: the points a contact's relation reads (a side of a dyad besides its bodies)
+        self.in_contact: set = set()
+        for relation in self.relations.values():
+            self.in_contact |= relation.points()
 
     def fail(self, detail: str, hint: str | None = None):
         return StructureError(detail, file=self.mech.file, hint=hint)
@@ -237,11 +246,20 @@ class _Decomposer:
                             "pivot, or a point placed before it, to a moving point")
         missing = [p for p in self.mech.moving if p not in self.known]
         if missing:
+            several = len(self.mech.coordinates) > 1 or self.mech.elements is not None
             raise self.fail(
                 f"the structure does not decompose into dyads (RRR, RRP, PRP, RPR): points "
                 f"{', '.join(missing)} are not reached",
-                hint="it may hold a class-III group (triad): solve it with --method newton, "
+                hint="the vibration analysis and files with several coordinates need the "
+                "closed form: check the links and contacts around them" if several else
+                "it may hold a class-III group (triad): solve it with --method newton, "
                 "or check the links around them")
+        unused = [n for n in self.relations if n not in self.consumed]
+        if unused:
+            raise self.fail(f"the contacts {', '.join(unused)} relate bodies that other links "
+                            "place already: the mechanism is over-constrained",
+                            hint="each rolling contact or cord removes one degree of freedom; "
+                            "check the coordinates and the links at the discs")
         return self.groups
 
     # drivers -------------------------------------------------------------------
@@ -313,36 +331,139 @@ class _Decomposer:
             self.yoke() or self.actuator() or self.roll()
 
     def roll(self) -> bool:
-        """A disc whose centre is known, turned by its rolling contact or cord."""
-        for r in self.mech.rolling.values():
-            body = self.mech.bodies[r.disc]
-            if body.name in self.known_bodies or r.center not in self.known:
+        """A disc turned by a contact that leaves only its turn unknown: its centre known,
+        its second point placed by the turn the relation gives (kinematics.contacts)."""
+        for name, rel in self.relations.items():
+            if name in self.consumed:
                 continue
-            if r.kind == "cord" and r.point not in self.known or \
-                    r.kind in ("disc", "belt") and r.other not in self.known_bodies:
+            unknown = [t for t, _, _ in rel.terms if not self.term_known(t)]
+            if len(unknown) != 1 or not isinstance(unknown[0], Turn):
                 continue
-            marker = body.points[1]
-            if marker in self.known:
-                raise self.fail(f"disc {r.disc} is turned both by {r.name} and by the links at "
-                                f"{marker}", hint="a rolling disc's points other than its "
-                                "centre may carry springs and masses, not other links")
-            what = {"line": "rolling on a fixed line", "cord": f"the cord to {r.point}",
-                    "circle": f"rolling {'inside' if r.inside else 'outside'} the circle about "
-                              f"{r.track}",
-                    "disc": f"rolling {'inside' if r.inside else 'outside'} disc {r.other}",
-                    "belt": f"the belt from disc {r.other}"}
-            self.groups.append(Group("roll", marker, (r,), (r.disc,),
-                                     note=f"{r.name} ({what[r.kind]})"))
-            self.known.add(marker)
-            self.settle(body, [r.center, marker])
+            turn = unknown[0]
+            body = self.turned_body(turn)
+            if body is None:
+                continue
+            self.groups.append(Group("roll", turn.b, (rel, turn), (body.name,),
+                                     note=contact_text(self.mech, name, body.name)))
+            self.consumed.add(name)
+            self.known.add(turn.b)
+            self.settle(body, [turn.a, turn.b])
             return True
         return False
+
+    def term_known(self, term) -> bool:
+        """Whether a measure of a contact is known: its points are placed, or it is a turn
+        an angle coordinate gives."""
+        if isinstance(term, Turn) and term.coord is not None:
+            return True
+        return all(p in self.known for p in term.points)
+
+    def turned_body(self, turn):
+        """The link a contact's turn would place: unplaced, its first two points the turn's
+        a (known) and b (unknown)."""
+        if turn.a not in self.known or turn.b in self.known:
+            return None
+        return next((b for b in self.mech.bodies.values() if b.kind == "link" and
+                     b.name not in self.known_bodies and tuple(b.points[:2]) == (turn.a, turn.b)),
+                    None)
+
+    def tracks(self, p) -> list:
+        """The contacts that put the unknown point ``p`` on a line (``contacts.Track``): one
+        whose other measures are known, or the fewest whose unknown disc turns a weighted
+        sum of them leaves out (k contacts, k - 1 turns: a rope over several pulleys).  The
+        points of a slider that translates with ``p`` count as ``p`` (a hook block's
+        pulleys)."""
+        rigid = self.translating(p)
+        usable = [(n, r) for n, r in self.relations.items()
+                  if n not in self.consumed and self.on_line(r, rigid)]
+        found = [Track(r, p, rigid=rigid, spend=(n,)) for n, r in usable
+                 if not self.unknown_turns(r)]
+        for size in range(2, len(usable) + 1):
+            for subset in combinations(usable, size):
+                track = self.combined(subset, p, rigid)
+                if track is not None:
+                    found.append(track)
+            if len(found) > 0:
+                break
+        return found
+
+    def unknown_turns(self, rel) -> list:
+        return [t for t, _, _ in rel.terms if isinstance(t, Turn) and not self.term_known(t)]
+
+    def combined(self, subset, p, rigid):
+        """The Track of sum lambda_i R_i over ``subset`` (k contacts with k - 1 unknown turns
+        between them) that leaves every turn out; None when they do not cancel, or when the
+        contacts left could not then turn the discs one by one."""
+        turns = list(dict.fromkeys(t for _, r in subset for t in self.unknown_turns(r)))
+        if len(turns) != len(subset) - 1:
+            return None
+        a = np.array([[r.coefficient(t) for t in turns] for _, r in subset])
+        _, sv, vt = np.linalg.svd(a.T) if turns else (None, np.array([]), np.ones((1, 1)))
+        if turns and (sv.size < len(turns) or sv[-1] < 1e-9 * sv[0]):
+            return None             # the turns are not independent: no single combination
+        weights = vt[-1]
+        if np.min(np.abs(weights)) < 1e-9 * np.max(np.abs(weights)):
+            return None             # a smaller set does it
+        rel = Relation.combine([(r, w) for (_, r), w in zip(subset, weights)], turns)
+        if not self.on_line(rel, rigid):
+            return None
+        for spent, _ in subset:
+            rest = [r for n, r in subset if n != spent]
+            if self.turned_one_by_one(rest, turns):
+                return Track(rel, p, rigid=rigid, spend=(spent,))
+        return None
+
+    def turned_one_by_one(self, rels, turns) -> bool:
+        """Whether ``rels`` give the ``turns`` one at a time (each step a contact with one
+        turn left unknown), once the point they share is placed."""
+        left, todo = set(turns), list(rels)
+        while todo:
+            step = next((r for r in todo if len(left & set(self.unknown_turns(r))) == 1), None)
+            if step is None:
+                return not left
+            left -= set(self.unknown_turns(step))
+            todo.remove(step)
+        return not left
+
+    def translating(self, p) -> dict:
+        """{point: its constant offset from p} of the points that translate with ``p``: a
+        slider's points on a fixed guide (p among them), or p alone."""
+        block = next((b for b in self.mech.bodies.values() if b.kind == "block"
+                      and p in b.points and b.guide.carrier == FRAME), None)
+        if block is None:
+            return {p: 0j}
+        g = block.guide
+        axis = self.mech.fixed[g.c] - self.mech.fixed[g.b]
+        u = axis / abs(axis)
+        return {x: (block.local[x] - block.local[p]) * u for x in block.points
+                if x not in self.known}
+
+    def on_line(self, rel, rigid) -> bool:
+        """Whether ``rel`` leaves unknown only the turns of discs and the points of
+        ``rigid`` (one translating body), these linearly: a line through them, once the
+        turns are left out."""
+        if not set(rigid) & rel.points():
+            return False
+        known = self.known
+        for term, _, _ in rel.terms:
+            if isinstance(term, Turn) and not self.term_known(term):
+                continue                # a disc's turn: left out by the combination
+            inside = set(term.points) & set(rigid)
+            if inside:
+                if not all(term.linear(x, known) for x in inside) or \
+                        any(x not in known for x in term.points if x not in rigid):
+                    return False
+            elif not self.term_known(term):
+                return False
+        figure = {**self.mech.fixed, **self.mech.moving}
+        size = max(abs(z) for z in figure.values()) or 1.0
+        w = sum(c * term.grad(figure, x) for term, c, _ in rel.terms for x in rigid
+                if not (isinstance(term, Turn) and not self.term_known(term)))
+        return abs(w) > 1e-9 / size     # a line, not a degenerate one
 
     def place(self) -> bool:
         for body in self.mech.bodies.values():
             if body.name in self.known_bodies:
-                continue
-            if body.name in self.rolling_discs:
                 continue
             known = [p for p in body.points if p in self.known]
             if body.kind == "link" and len(known) >= 2 or body.kind in ("cylinder", "rod") \
@@ -407,7 +528,7 @@ class _Decomposer:
         """Constraints on unknown point ``p`` from bodies whose pose follows from one known point."""
         found = []
         for body in self.bodies_at.get(p, ()):
-            if body.name in self.known_bodies or body.name in self.rolling_discs:
+            if body.name in self.known_bodies:
                 continue
             if body.kind == "link":
                 known = [a for a in body.points if a in self.known]
@@ -424,12 +545,13 @@ class _Decomposer:
                 act = next((a.name for a in self.mech.actuators.values()
                             if {a.a, a.b} == ends), "".join(sorted(ends)))
                 found.append(Dist(p, other, None, act, coord=j))
-        return found
+        return found + self.tracks(p)
 
     def dyad(self) -> bool:
         for p in self.mech.moving:
-            if p in self.known or len(self.bodies_at.get(p, ())) < 2 and not self.driven:
-                continue                # (one body and no driving length: one side at most)
+            if p in self.known or len(self.bodies_at.get(p, ())) < 2 and not self.driven \
+                    and p not in self.in_contact:
+                continue    # (one body, no driving length, no contact: one side at most)
             found = self.sides(p)
             if len(found) < 2:
                 continue
@@ -440,11 +562,17 @@ class _Decomposer:
             self.groups.append(Group(kind, p, pair, tuple(c.body for c in pair),
                                      driver=any(isinstance(c, Dist) and c.length is None
                                                 for c in pair), note=note))
+            for c in pair:
+                if isinstance(c, Track):
+                    self.consumed.update(c.spend)
             self.known.add(p)
             return True
         return False
 
     def side_text(self, c) -> str:
+        if isinstance(c, Track):
+            return f"contacts {c.relation.name}" if len(c.relation.names) > 1 \
+                else f"contact {c.relation.name}"
         if isinstance(c, Dist):
             driven = self.mech.coordinates[c.coord].name if c.length is None else "length"
             return f"{c.a} ({c.body}, {driven})"
@@ -484,7 +612,7 @@ class _Decomposer:
         g = block.guide
         link = self.mech.bodies[g.carrier]
         known = [p for p in link.points if p in self.known]
-        if len(known) != 1 or link.name in self.rolling_discs:
+        if len(known) != 1:
             return False
         k = known[0]
         local = link.local
@@ -545,6 +673,20 @@ class _Decomposer:
                                      note=f"{act.a}, {act.b}"))
             return True
         return False
+
+
+def contact_text(mech, name, disc) -> str:
+    """'NAME (rolling on a fixed line)', the cord's point, the belt's disc ... as the
+    decomposition describes a contact."""
+    r = mech.rolling[name]
+    on = "a fixed line" if r.carrier == FRAME else f"a line of {r.carrier}"
+    what = {"line": f"rolling on {on}", "cord": f"the cord to {r.point}",
+            "circle": f"rolling {'inside' if r.inside else 'outside'} the circle about "
+                      f"{r.track}",
+            "disc": f"rolling {'inside' if r.inside else 'outside'} disc {r.other}",
+            "belt": f"the belt from disc {r.other}" if disc == r.disc else
+                    f"the belt from disc {r.disc}"}
+    return f"{name} ({what[r.kind]})"
 
 
 def cross_local(a: complex, b: complex) -> float:

@@ -69,9 +69,11 @@ class Rolling:
     The disc is the link ``disc`` whose first point ``center`` is its centre;
     ``radius`` its rolling radius.  What it rolls on (``kind``):
 
-    - 'line': a fixed line of unit direction ``direction``; ``side`` is -1 when the
-      centre is on the line's left (looking along u), +1 on its right:
-      omega = side (v_C . u) / r;
+    - 'line': a line of unit direction ``direction`` (in the figure); ``side`` is -1 when
+      the centre is on the line's left (looking along u), +1 on its right:
+      omega = side (v_C . u) / r on a fixed line; a line of the body ``carrier`` (a link or
+      slider, FRAME for a fixed line) turns and moves with it, and the disc rolls on it
+      as on a fixed line in the carrier's own frame;
     - 'cord': a straight cord leaving the pulley along ``direction`` towards
       ``point`` P, from its ``side``: the cord is a line moving with P,
       omega = side ((v_C - v_P) . u) / r;
@@ -87,7 +89,8 @@ class Rolling:
       v_D . u - other_side r_D omega_D, so
       omega = side ((v_C - v_D) . u + other_side r_D omega_D) / r.
 
-    Each contact takes one degree of freedom (a higher pair in Grübler's count).
+    Each contact takes one degree of freedom (a higher pair in Grübler's count); a disc
+    may have any number of them (a pulley with several cords).
     """
 
     name: str
@@ -103,6 +106,7 @@ class Rolling:
     inside: bool = False
     other: str | None = None
     other_side: int = 1
+    carrier: str = FRAME
 
 
 @dataclass(frozen=True)
@@ -176,8 +180,10 @@ class Quantity:
       it is given, ``c`` then saying what b is, as ``of`` does for a), and
       'instant_centre_distance' from it to point ``b``;
     - 'reaction': the force of the pin at point ``a`` on body ``b`` (``of``: its kind,
-      or 'frame'), ``component`` x, y or magnitude; 'slider_force' of slider ``a``,
-      ``component`` normal or friction;
+      'cylinder' or 'rod' for an actuator's half, or 'frame'), ``component`` x, y,
+      magnitude, or along / normal (left) to ``axis``: ('body', NAME) a body's axis,
+      ('points', P, Q) the vector P -> Q, ('angle', radians) a fixed direction (None: the
+      axis of body ``b``); 'slider_force' of slider ``a``, ``component`` normal or friction;
     - 'velocity_ratio': d(a)/dq of the quantity named ``a``;
     - 'least_speed', 'least_speed_at': of the line through points ``a`` and ``b`` of one
       body, the least speed of its points and where it is (distance from a along a->b);
@@ -209,6 +215,7 @@ class Quantity:
     #: of a complex vibration answer, its 'real' or 'imaginary' part (None: its magnitude);
     #: of the characteristic polynomial's coefficient, 'monic' (divided by the leading one)
     form: str | None = None
+    axis: tuple | None = None      # a joint force's direction of projection (see above)
 
     @property
     def rates(self) -> int:

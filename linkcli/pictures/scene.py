@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from linkcli.forces.motion import rigid_point
+from linkcli.forces.pairs import line_direction
 from linkcli.model.mechanism import FRAME
 
 GREEK = {"phi": "φ", "theta": "θ", "alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ",
@@ -137,7 +138,7 @@ class Contact:
 
     centre: complex
     radius: float
-    ground: list | None = None      # the fixed line it rolls on
+    ground: list | None = None      # the line it rolls on
     track: tuple | None = None      # (centre, radius) of the fixed circle it rolls in or on
     strand: list | None = None      # the straight cord or belt strand it turns with
 
@@ -148,7 +149,8 @@ def contacts(scene) -> list[Contact]:
     tangent points."""
     out = []
     for r in scene.mech.rolling.values():
-        c, rad, u = scene.p[r.center], r.radius / scene.lf, r.direction
+        c, rad = scene.p[r.center], r.radius / scene.lf
+        u = complex(line_direction(scene.mech, r, scene.p))   # a body's line turns with it
         tangent = c + r.side * rad * 1j * u
         shape = Contact(c, rad)
         if r.kind == "line":

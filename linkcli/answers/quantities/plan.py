@@ -73,7 +73,7 @@ def needed_orders(mech, names):
 def _needs(mech, quantity, order) -> int:
     """The order of the kinematics that ``quantity``'s rate of ``order`` is computed from."""
     kind = quantity.kind
-    if kind in ("reaction", "slider_force"):
+    if kind in JOINT_FORCES:
         return 2 if mech.dynamics is not None else 0
     if kind in ("instant_centre", "instant_centre_distance", "velocity_ratio",
                 "least_speed_at"):

@@ -27,7 +27,8 @@ AT_REST = 1e-9
 TEXTBOOK = ("speed", "acceleration", "tangential_acceleration", "normal_acceleration",
             "along", "normal_to", "relative", "relative_speed", "relative_acceleration",
             "rotation", "between", "instant_centre", "instant_centre_distance", "reaction",
-            "slider_force", "velocity_ratio", "least_speed", "least_speed_at")
+            "slider_force", "velocity_ratio", "least_speed", "least_speed_at", "tension",
+            "contact_force")
 
 
 

@@ -152,3 +152,13 @@ def test_friction_that_locks_the_mechanism_is_refused_with_the_coefficient_where
     cot = 1 / math.tan(math.radians(70))
     assert caught.value.reached == pytest.approx(cot / 0.5, abs=2e-6)
     assert f"mu = {cot:.6g} at slider piston" in str(caught.value)
+
+
+def test_a_normal_force_of_zero_names_no_other_answer():
+    """A disc pushed along a floor with rolling resistance and no gravity: N = 0, so either
+    sign of N is consistent and both give F = (m + J/R^2) a, one answer (the warning named
+    'another' set of joint forces equal to the one given)."""
+    path = os.path.join(DATA, "trust", "gravity-off-quoted.yaml")
+    result = linkcli.load(path).solve()
+    assert result.values["F"] == pytest.approx((20 + 0.9 / 0.3 ** 2) * 1.5, rel=1e-12)
+    assert [c for c in result.cautions if c.kind == "friction"] == []

@@ -263,10 +263,13 @@ def _lock_point(system, matrix, losses, at, lo, hi) -> float:
 
 
 # --- the other consistent answers ------------------------------------------------------------
-def others(system, rhs, losses, matrix):
+def others(system, rhs, losses, matrix, given):
     """[(rows, x, losses)]: the other sets of signs of the normal forces (each of the 2^n,
     n <= SIGNS_SEARCHED) with joint forces consistent with them at some driver values, the
-    friction circles' directions iterated with them; ``rows`` marks those values."""
+    friction circles' directions iterated with them; ``rows`` marks those values.  Joint
+    forces equal to the ``given`` answer to CONVERGED (:func:`settled`) are no other answer:
+    a normal force of zero (no load across the guide) is consistent with either sign and
+    its loss is zero with both."""
     keys = list(losses.signs)
     if not keys or len(keys) > SIGNS_SEARCHED:
         return []
@@ -284,7 +287,7 @@ def others(system, rhs, losses, matrix):
             continue
         x, trial, regular = solved
         normal = normals(system, x, trial)
-        ok = ~same & regular
+        ok = ~same & regular & ~settled(system, x, given)
         for k, c in zip(keys, combo):
             ok &= np.broadcast_to(normal[k] * c >= 0, shape)
         if ok.any():

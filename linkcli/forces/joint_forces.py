@@ -52,7 +52,7 @@ def solve(mech, kin) -> Reactions:
     x, losses = coulomb.continued(system, rhs, losses, matrix)
     out = _unpack(system, x, losses)
     out.cautions += [coulomb.other_caution(system, x, losses, *other)
-                     for other in coulomb.others(system, rhs, losses, matrix)[:1]]
+                     for other in coulomb.others(system, rhs, losses, matrix, x)[:1]]
     return out
 
 

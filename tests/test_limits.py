@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 
 import numpy as np
 import pytest
@@ -414,3 +415,21 @@ def test_limits_over_a_toggle_inside_the_range(capsys):
     with pytest.raises(SolveError, match=r"xC holds its minimum \(0.0000 mm\) over q = "
                        r"90\.\d+..26\d\.\d+ deg"):
         link.solve(names=["low"])
+
+
+def test_a_run_across_the_turns_end_is_described_to_its_end():
+    """docs/examples/toggle.yaml: x_C = 100 cos q mm outside 90..270 deg, so its rate
+    xCdot = -100 sin q qdot (qdot = 10 deg/s in rad/s) falls from the toggle at 270 deg
+    through 360 to the toggle at 90 deg (no extreme: it jumps at the toggles).  The reason
+    stopped at 360 deg, at 0 mm/s, as if the rate fell to 0 only."""
+    path = os.path.join(ROOT, "docs", "examples", "toggle.yaml")
+    found = limits.find(linkcli.load(path).model, "xCdot", None, None)
+    assert not found.extremes
+    match = re.search(r"it falls from (\S+) to (\S+) mm/s \(by \S+\) as q goes from (\S+) to "
+                      r"(\S+) \(through 360\) deg", found.why)
+    assert match, found.why
+    start, end = float(match[3]), float(match[4])
+    assert 270 < start < 271 and 89 < end < 90
+    for value, q in ((match[1], start), (match[2], end)):
+        assert float(value) == pytest.approx(-100 * math.sin(math.radians(q)) * math.radians(10),
+                                             abs=1e-4)

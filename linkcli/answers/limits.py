@@ -396,13 +396,19 @@ def _why(found, scales) -> str:
             parts.append(f"it is constant ({fmt(held, 4)} {found.unit}) for q in "
                          f"{_num(qs[0])}..{_num(qs[-1])} {found.q_unit}")
             continue
-        inside = qs <= found.stop
-        last = int(np.nonzero(inside)[0][-1]) if inside.any() else qs.size - 1
+        last = qs.size - 1
+        end = _num(qs[last])
+        if qs[last] > found.stop and found.periodic:     # a run across the turn's end
+            end = f"{_num(qs[last] - found.turn)} (through {_num(found.stop)})"
+        elif qs[last] > found.stop:
+            inside = qs <= found.stop
+            last = int(np.nonzero(inside)[0][-1]) if inside.any() else last
+            end = _num(qs[last])
         trend = "rises" if level[last] > level[0] else "falls"
         parts.append(f"its rate d({found.name})/dq keeps its sign: it {trend} from "
                      f"{fmt(shown[0], 4)} to {fmt(shown[last], 4)} {found.unit} (by "
                      f"{fmt(abs(level[last] - level[0]), 4)}) as q goes from {_num(qs[0])} to "
-                     f"{_num(qs[last])} {found.q_unit}")
+                     f"{end} {found.q_unit}")
     return "; ".join(parts)
 
 

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import linkcli
+from linkcli.model.units import parse_unit
 
 # a carriage on the ground (its point K, x = x1) carries a disc (centre C on a guide of the
 # carriage, marker M) rolling on its floor; the disc's own turn is the second coordinate
@@ -471,8 +472,9 @@ def _vibration(text, names):
     extra = "quantities:\n" + "".join(f"  {n}: {spec}\n" for n, spec in names.items())
     report = "report: {vibration: [" + ", ".join(names) + "]}\n"
     lines = [line for line in text.splitlines(True) if not line.startswith("report:")]
-    mech = linkcli.loads("".join(lines) + extra + report)
-    return {n: float(v) for n, v in mech.solve().values.items()}
+    result = linkcli.loads("".join(lines) + extra + report).solve()
+    # in SI: an entry between a length and an angle is shown in the file's units (N/deg)
+    return {n: float(v) * parse_unit(result.units[n])[1] for n, v in result.values.items()}
 
 
 MATRICES = {f"{kind}{i}{j}": f"{{{kind_name}: [{a}, {b}]}}"

@@ -15,6 +15,8 @@ COLORS = ["#1f77b4", "#2ca02c", "#9467bd", "#8c564b", "#17becf", "#bcbd22", "#ff
           "#7f7f7f", "#e377c2"]
 VECTOR = "#b22222"
 KNOWN, UNKNOWN = "#1a7f37", "#c71585"
+#: the gid of the lines and outlines that are the mechanism itself: labels keep off them
+BODY = "body"
 
 
 def figure(width, height, dpi=100):
@@ -101,12 +103,12 @@ def draw_elements(ax, scene, elements):
     """Springs as zigzags and dampers as dashpots between their points, with their names."""
     for kind, name, a, b in element_ends(scene, elements):
         if kind == "spring":
-            _line(ax, zigzag(a, b, scene.size), color="#333333", lw=1.2, zorder=4)
+            _line(ax, zigzag(a, b, scene.size), color="#333333", lw=1.2, zorder=4, gid=BODY)
         else:
             rod, cup, piston = dashpot(a, b, scene.size)
-            _line(ax, rod, color="#333333", lw=1.2, zorder=4)
-            _line(ax, cup, color="#333333", lw=1.2, zorder=4)
-            _line(ax, piston, color="#333333", lw=2.0, zorder=4)
+            _line(ax, rod, color="#333333", lw=1.2, zorder=4, gid=BODY)
+            _line(ax, cup, color="#333333", lw=1.2, zorder=4, gid=BODY)
+            _line(ax, piston, color="#333333", lw=2.0, zorder=4, gid=BODY)
         _text(ax, (a + b) / 2 + 0.04 * scene.size * 1j, name, fontsize=8, ha="center",
               va="bottom", zorder=7)
 
@@ -115,15 +117,18 @@ def _links(ax, scene):
     for i, pts in enumerate(links(scene)):
         color = COLORS[i % len(COLORS)]
         if len(pts) == 2:
-            _line(ax, pts, color=color, lw=5, solid_capstyle="round", alpha=0.9, zorder=2)
+            _line(ax, pts, color=color, lw=5, solid_capstyle="round", alpha=0.9, zorder=2,
+                  gid=BODY)
         else:
-            _polygon(ax, pts, facecolor=color, alpha=0.35, edgecolor=color, lw=2.5, zorder=2)
+            _polygon(ax, pts, facecolor=color, alpha=0.35, edgecolor=color, lw=2.5, zorder=2,
+                     gid=BODY)
 
 
 def _actuators(ax, scene):
     for a, cylinder, b, rod in actuators(scene):
-        _line(ax, [a, cylinder], color="#555555", lw=9, solid_capstyle="butt", zorder=2)
-        _line(ax, [b, rod], color="#222222", lw=3, zorder=3)
+        _line(ax, [a, cylinder], color="#555555", lw=9, solid_capstyle="butt", zorder=2,
+              gid=BODY)
+        _line(ax, [b, rod], color="#222222", lw=3, zorder=3, gid=BODY)
 
 
 def _blocks(ax, scene, dyn, spins):
@@ -131,12 +136,12 @@ def _blocks(ax, scene, dyn, spins):
         if block.guide is not None:
             _line(ax, block.guide, color="#888888", lw=1, ls="-.", zorder=1)
         for arm in block.arms:
-            _line(ax, arm, color="#444444", lw=3, zorder=3)
+            _line(ax, arm, color="#444444", lw=3, zorder=3, gid=BODY)
         if block.disc is not None:
             _disc(ax, scene, block, spins.get(block.disc.name, 0.0))
         else:
             _polygon(ax, block.corners(scene.size), facecolor="#cccccc", edgecolor="#222222",
-                     lw=1.3, zorder=3)
+                     lw=1.3, zorder=3, gid=BODY)
 
 
 def _disc(ax, scene, block, turn):
@@ -164,7 +169,7 @@ def _contacts(ax, scene):
             ax.add_patch(Circle((t.real, t.imag), r, fill=False, edgecolor="#444444", lw=1.5,
                                 zorder=1))
         if shape.strand is not None:
-            _line(ax, shape.strand, color="#8b5a2b", lw=1.6, zorder=2)
+            _line(ax, shape.strand, color="#8b5a2b", lw=1.6, zorder=2, gid=BODY)
 
 
 def _grounds(ax, scene):
@@ -258,15 +263,67 @@ def label_boxes(ax, renderer=None) -> list:
             if t.get_visible() and t.get_text().strip()]
 
 
+def body_segments(ax, renderer=None):
+    """(segments, pads): every straight piece of the mechanism's lines and outlines (gid
+    BODY) in pixels, an (n, 4) array of x0, y0, x1, y1, and half each one's width (pixels)."""
+    import numpy as np
+    renderer = renderer or ax.figure.canvas.get_renderer()
+    pieces, pads = [], []
+    per_point = ax.figure.dpi / 72.0
+    for artist in list(ax.lines) + list(ax.patches):
+        if artist.get_gid() != BODY or not artist.get_visible():
+            continue
+        if hasattr(artist, "get_xydata"):
+            xy = artist.get_transform().transform(artist.get_xydata())
+        else:                                   # a polygon, closed
+            xy = artist.get_transform().transform(artist.get_path().vertices)
+        if len(xy) < 2:
+            continue
+        pieces.append(np.hstack([xy[:-1], xy[1:]]))
+        pads.append(np.full(len(xy) - 1, 0.5 * artist.get_linewidth() * per_point))
+    if not pieces:
+        return np.zeros((0, 4)), np.zeros(0)
+    return np.vstack(pieces), np.concatenate(pads)
+
+
+def crossing(boxes, segments, pads):
+    """For each box (x0, y0, x1, y1 in pixels, an (m, 4) array): whether a segment, widened
+    by its pad, passes through it (Liang-Barsky: the part of each segment P0 + t (P1 - P0),
+    t in [0, 1], inside the box is not empty)."""
+    import numpy as np
+    boxes = np.asarray(boxes, float)[:, None, :]
+    x0, y0, x1, y1 = (segments[None, :, i] for i in range(4))
+    lo_x, lo_y = boxes[..., 0] - pads, boxes[..., 1] - pads
+    hi_x, hi_y = boxes[..., 2] + pads, boxes[..., 3] + pads
+    dx, dy = x1 - x0, y1 - y0
+    t0 = np.zeros(np.broadcast(lo_x, x0).shape)
+    t1 = np.ones_like(t0)
+    outside = np.zeros(t0.shape, bool)
+    for p, q in ((-dx, x0 - lo_x), (dx, hi_x - x0), (-dy, y0 - lo_y), (dy, hi_y - y0)):
+        p = np.broadcast_to(p, t0.shape)
+        q = np.broadcast_to(q, t0.shape)
+        flat = p == 0
+        outside |= flat & (q < 0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r = np.where(flat, 0.0, q / np.where(flat, 1.0, p))
+        t0 = np.where(~flat & (p < 0), np.maximum(t0, r), t0)
+        t1 = np.where(~flat & (p > 0), np.minimum(t1, r), t1)
+    return (~outside & (t0 <= t1)).any(axis=-1)
+
+
 def place_labels(ax) -> None:
     """Move the labels of ``ax`` apart, in the order they were drawn (pivots' names first,
     then the vectors', the angles', the loads'): each label that would overlap one placed
-    before it, or leave the axes, goes to the nearest free position on rings around where
-    it was drawn (8 to 64 directions a ring).  Call it once the axes' layout is final:
-    positions are in pixels."""
+    before it, cross the mechanism's lines (:func:`body_segments`) or leave the axes goes
+    to the nearest position on rings around where it was drawn (8 to 64 directions a ring)
+    free of all three; where none is within reach, to the nearest free of the labels and
+    the axes' edge only.  Call it once the axes' layout is final: positions are in pixels."""
     import math
+
+    import numpy as np
     renderer = ax.figure.canvas.get_renderer()
     frame = ax.get_window_extent(renderer)
+    segments, pads = body_segments(ax, renderer)
     placed = []
 
     def free(box):
@@ -274,18 +331,31 @@ def place_labels(ax) -> None:
                 box.y1 <= frame.y1 and not any(box.padded(LABEL_GAP).overlaps(other)
                                                for other in placed))
 
+    def clear(box, moves):
+        """Whether ``box`` moved by each of ``moves`` keeps off the mechanism's lines."""
+        shifted = np.array([[box.x0 + mx, box.y0 + my, box.x1 + mx, box.y1 + my]
+                            for mx, my in moves])
+        return ~crossing(shifted, segments, pads)
+
     for text, box in label_boxes(ax, renderer):
-        if not free(box):
-            for ring in range(1, LABEL_REACH + 1):
-                r = ring * LABEL_STEP
-                count = min(64, 8 * ring)
-                moves = [(r * math.cos(2 * math.pi * i / count),
-                          r * math.sin(2 * math.pi * i / count)) for i in range(count)]
-                move = next((m for m in moves if free(box.translated(*m))), None)
+        if not (free(box) and clear(box, [(0.0, 0.0)])[0]):
+            move = None
+            for lines in (True, False):
+                for ring in range(1, LABEL_REACH + 1):
+                    r = ring * LABEL_STEP
+                    count = min(64, 8 * ring)
+                    moves = [(r * math.cos(2 * math.pi * i / count),
+                              r * math.sin(2 * math.pi * i / count)) for i in range(count)]
+                    if lines:
+                        moves = [m for m, ok in zip(moves, clear(box, moves)) if ok]
+                    move = next((m for m in moves if free(box.translated(*m))), None)
+                    if move is not None:
+                        break
                 if move is not None:
-                    _shift(ax, text, *move)
-                    box = box.translated(*move)
                     break
+            if move is not None:
+                _shift(ax, text, *move)
+                box = box.translated(*move)
         placed.append(box)
 
 

@@ -232,6 +232,10 @@ class _Decomposer:
         for name, relation in self.relations.items():
             for x in relation.points():
                 self.contacts_at.setdefault(x, []).append(name)
+        #: the figure's points and their farthest from the origin: a contact's line is
+        #: tested there (:meth:`on_line`), once per pair of a point and a contact
+        self.figure = {**mech.fixed, **mech.moving}
+        self.figure_size = max((abs(z) for z in self.figure.values()), default=0.0) or 1.0
 
     def fail(self, detail: str, hint: str | None = None):
         return StructureError(detail, file=self.mech.file, hint=hint)
@@ -459,11 +463,9 @@ class _Decomposer:
                     return False
             elif not self.term_known(term):
                 return False
-        figure = {**self.mech.fixed, **self.mech.moving}
-        size = max(abs(z) for z in figure.values()) or 1.0
-        w = sum(c * term.grad(figure, x) for term, c, _ in rel.terms for x in rigid
+        w = sum(c * term.grad(self.figure, x) for term, c, _ in rel.terms for x in rigid
                 if not (isinstance(term, Turn) and not self.term_known(term)))
-        return abs(w) > 1e-9 / size     # a line, not a degenerate one
+        return abs(w) > 1e-9 / self.figure_size     # a line, not a degenerate one
 
     def place(self) -> bool:
         for body in self.mech.bodies.values():

@@ -232,6 +232,12 @@ class _Decomposer:
         for name, relation in self.relations.items():
             for x in relation.points():
                 self.contacts_at.setdefault(x, []).append(name)
+        #: the points a contact may place: those it reads and those of their bodies (a
+        #: slider's point moves with the contact's points it carries)
+        self.near_contact: set = set(self.contacts_at)
+        for x in self.contacts_at:
+            for body in self.bodies_at.get(x, ()):
+                self.near_contact.update(body.points)
 
     def fail(self, detail: str, hint: str | None = None):
         return StructureError(detail, file=self.mech.file, hint=hint)
@@ -554,7 +560,7 @@ class _Decomposer:
     def dyad(self) -> bool:
         for p in self.mech.moving:
             if p in self.known or len(self.bodies_at.get(p, ())) < 2 and not self.driven \
-                    and p not in self.contacts_at:
+                    and p not in self.near_contact:
                 continue    # (one body, no driving length, no contact: one side at most)
             found = self.sides(p)
             if len(found) < 2:

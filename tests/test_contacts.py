@@ -536,11 +536,15 @@ loads: {T: {type: driver, value: unknown}, W: {type: torque, on: rocker, value: 
 """
 
 
-@pytest.mark.parametrize("text, method", [
+#: every element with masses, and the method that solves it
+WITH_MASSES = pytest.mark.parametrize("text, method", [
     (open(Q6).read(), "closed"), (open(CAGE).read(), "closed"), (RACK, "closed"),
     (TACKLE_MASSES, "closed"), (SECTOR_MASSES, "closed"), (DIFFERENTIAL_MASSES, "closed"),
     (PLANETARY, "newton")],
     ids=["atwood", "hoist", "rack", "tackle", "sector", "differential", "planetary"])
+
+
+@WITH_MASSES
 def test_every_body_and_pin_balances_with_the_contacts(text, method):
     """Each body and pin in dynamic equilibrium under the reported forces, the contacts'
     written here from the model, and the driver's load equal to the virtual work one, over
@@ -561,11 +565,7 @@ def test_every_body_and_pin_balances_with_the_contacts(text, method):
     assert np.max(np.abs(r.unknown - si)) < 1e-9 * max(size, float(np.max(np.abs(si))))
 
 
-@pytest.mark.parametrize("text, method", [
-    (open(Q6).read(), "closed"), (open(CAGE).read(), "closed"), (RACK, "closed"),
-    (TACKLE_MASSES, "closed"), (SECTOR_MASSES, "closed"), (DIFFERENTIAL_MASSES, "closed"),
-    (PLANETARY, "newton")],
-    ids=["atwood", "hoist", "rack", "tackle", "sector", "differential", "planetary"])
+@WITH_MASSES
 def test_energy_balance_on_random_motions(text, method):
     """d(T + V)/dt = power of the loads: the kinetic energy of the bodies (from their
     velocities) differenced along q(t) = q + q' t + q'' t^2 / 2, against the driver's load

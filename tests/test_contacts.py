@@ -765,3 +765,17 @@ def test_validate_finds_what_solve_refuses(tmp_path, capsys):
     assert main(["validate", str(path)]) == 3
     assert "closed form" in capsys.readouterr().out
     assert main(["solve", str(path)]) == 3
+
+
+def test_validate_names_the_method_a_planetary_gear_needs(tmp_path, capsys):
+    """The planet carries its arm between the driven sun and the fixed ring: no dyad turns
+    the arm, so the closed form refuses (exit 3) and validate says that Newton solves it;
+    Newton then does."""
+    from linkcli.cli import main
+    path = tmp_path / "planetary.yaml"
+    path.write_text(PLANETARY)
+    assert main(["validate", str(path)]) == 0
+    assert "--method newton" in capsys.readouterr().out
+    assert main(["solve", str(path)]) == 3
+    assert "--method newton" in capsys.readouterr().err
+    assert main(["solve", str(path), "--method", "newton"]) == 0

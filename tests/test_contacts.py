@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import linkcli
+from linkcli.model.units import parse_unit
 
 # a carriage on the ground (its point K, x = x1) carries a disc (centre C on a guide of the
 # carriage, marker M) rolling on its floor; the disc's own turn is the second coordinate
@@ -604,16 +605,13 @@ def test_energy_balance_on_random_motions(text, method):
 
 # --- vibrations -----------------------------------------------------------------------------
 def _vibration(text, names):
-    """The named vibration quantities of ``text`` in SI (per radian), its own report left
-    out: each converted from the unit it is shown in (a length-by-angle entry in N/deg where
-    the file's angles are degrees)."""
-    from linkcli.model.units import parse_unit
+    """The named vibration quantities of ``text``, its own report left out."""
     extra = "quantities:\n" + "".join(f"  {n}: {spec}\n" for n, spec in names.items())
     report = "report: {vibration: [" + ", ".join(names) + "]}\n"
     lines = [line for line in text.splitlines(True) if not line.startswith("report:")]
     result = linkcli.loads("".join(lines) + extra + report).solve()
-    return {n: float(v) * (parse_unit(result.units[n])[1] if result.units.get(n) else 1.0)
-            for n, v in result.values.items()}
+    # in SI: an entry between a length and an angle is shown in the file's units (N/deg)
+    return {n: float(v) * parse_unit(result.units[n])[1] for n, v in result.values.items()}
 
 
 MATRICES = {f"{kind}{i}{j}": f"{{{kind_name}: [{a}, {b}]}}"

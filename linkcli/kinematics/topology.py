@@ -226,10 +226,12 @@ class _Decomposer:
         for body in mech.bodies.values():
             for p in body.points:
                 self.bodies_at.setdefault(p, []).append(body)
-        #: the points a contact's relation reads (a side of a dyad besides its bodies)
-        self.in_contact: set = set()
-        for relation in self.relations.values():
-            self.in_contact |= relation.points()
+        #: point -> the contacts whose relation reads it (a side of a dyad besides bodies)
+        self.contacts_at: dict = {}
+        self.contact_order = {name: i for i, name in enumerate(self.relations)}
+        for name, relation in self.relations.items():
+            for x in relation.points():
+                self.contacts_at.setdefault(x, []).append(name)
 
     def fail(self, detail: str, hint: str | None = None):
         return StructureError(detail, file=self.mech.file, hint=hint)
@@ -374,8 +376,10 @@ class _Decomposer:
         points of a slider that translates with ``p`` count as ``p`` (a hook block's
         pulleys)."""
         rigid = self.translating(p)
-        usable = [(n, r) for n, r in self.relations.items()
-                  if n not in self.consumed and self.on_line(r, rigid)]
+        near = sorted({n for x in rigid for n in self.contacts_at.get(x, ())},
+                      key=self.contact_order.get)            # in the file's order
+        usable = [(n, self.relations[n]) for n in near
+                  if n not in self.consumed and self.on_line(self.relations[n], rigid)]
         found = [Track(r, p, rigid=rigid, spend=(n,)) for n, r in usable
                  if not self.unknown_turns(r)]
         for size in range(2, len(usable) + 1):
@@ -428,8 +432,8 @@ class _Decomposer:
     def translating(self, p) -> dict:
         """{point: its constant offset from p} of the points that translate with ``p``: a
         slider's points on a fixed guide (p among them), or p alone."""
-        block = next((b for b in self.mech.bodies.values() if b.kind == "block"
-                      and p in b.points and b.guide.carrier == FRAME), None)
+        block = next((b for b in self.bodies_at.get(p, ()) if b.kind == "block"
+                      and b.guide.carrier == FRAME), None)
         if block is None:
             return {p: 0j}
         g = block.guide
@@ -550,7 +554,7 @@ class _Decomposer:
     def dyad(self) -> bool:
         for p in self.mech.moving:
             if p in self.known or len(self.bodies_at.get(p, ())) < 2 and not self.driven \
-                    and p not in self.in_contact:
+                    and p not in self.contacts_at:
                 continue    # (one body, no driving length, no contact: one side at most)
             found = self.sides(p)
             if len(found) < 2:

@@ -191,3 +191,71 @@ def test_an_interval_in_another_unit_and_keys_on_solved_parameters():
     rows = [line.split(",") for line in out.splitlines()[1:]]
     assert [float(r[1]) for r in rows] == pytest.approx(          # printed to 4 decimals
         [m * (2 * math.pi) ** 2 for m in (2.0, 4.0)], abs=5e-5)
+
+
+# --- a vibration file in pounds and inches --------------------------------------------------
+LB, LBF, INCH = 0.45359237, 0.45359237 * 9.80665, 0.0254
+
+
+def _pounds(find=""):
+    """tests/data/vibration/units_lb_lbf.yaml (1 lb on a 10 lb/in spring, 1 lbf at 1 Hz)
+    with its stiffness and mass as params and answers computed from its answers: a period
+    from a frequency shown in Hz, the same period from the matrices' entries shown in lb/in
+    and lb, a force from a stiffness times an amplitude shown in inches, an acceleration
+    from a force over a mass param, a ratio of two forces."""
+    text = open(os.path.join(ROOT, "tests", "data", "vibration", "units_lb_lbf.yaml"),
+                encoding="utf-8").read()
+    for old, new in (
+            ("frame: {O: [0, 0]}", "params: {kk: 10, m: 1}\nframe: {O: [0, 0]}"),
+            ("k: 10, preload", "k: kk, preload"), ("masses: {P: 1}", "masses: {P: m}"),
+            ("  X: {amplitude: x}\n", "  X: {amplitude: x}\n"
+             "  f1: {natural_frequency: 1}\n"
+             "  T1: {expr: \"1/f1\", unit: s}\n"
+             "  Tq: {expr: \"2*pi/sqrt(k_red/m_red)\", unit: ms}\n"
+             "  Fk: {expr: \"k_red*X\", unit: lbf}\n"
+             "  Fa: {expr: \"Ft/m\", unit: \"m/s^2\"}\n"
+             "  Fr: {expr: \"-Ft/N\"}\n" + find + "\n"),
+            ("vibration: [m_red, k_red, N, Ft, X]",
+             "vibration: [m_red, k_red, N, Ft, X, f1, T1, Tq, Fk, Fa, Fr]")):
+        assert old in text
+        text = text.replace(old, new)
+    return linkcli.loads(text, name="pounds.yaml")
+
+
+def _pounds_closed_form(k_si):
+    """The undamped block: omega_n = sqrt(k / m); the 1 lbf force at Omega = 2 pi rad/s
+    gives X = F / (k - m Omega^2) and the spring passes F_t = k X."""
+    wn = math.sqrt(k_si / LB)
+    x = LBF / (k_si - LB * (2 * math.pi) ** 2)
+    return wn, x, k_si * x
+
+
+@pytest.mark.parametrize("find, k_si", [
+    ("", 10 * LBF / INCH),
+    ("find: {unknowns: {kk: {between: [1, 100]}}, targets: {Tq: 0.25 s}}",
+     LB * (2 * math.pi / 0.25) ** 2),
+    ("find: {unknowns: {kk: {between: [1, 100]}}, targets: {f1: 5}}",
+     LB * (2 * math.pi * 5) ** 2),
+], ids=["file", "find-period", "find-frequency"])
+def test_expressions_read_the_answers_of_a_pound_inch_file_in_si(find, k_si):
+    """Each answer an expression reads is taken in SI whatever unit it is shown in (Hz,
+    lb/in, lb, in, lbf), and each expression shown in its own unit; a target on an
+    expression (the period in ms, given in s) or on a frequency in Hz finds the stiffness
+    of the closed form, shown in lb/in."""
+    result = _pounds(find).solve()
+    v = {n: float(x) for n, x in result.values.items()}
+    wn, x, ft = _pounds_closed_form(k_si)
+    if find:
+        assert result.units["kk"] == "lb/in"
+        assert v["kk"] == pytest.approx(k_si * INCH / LBF, rel=1e-9)
+    assert v["k_red"] == pytest.approx(k_si * INCH / LBF, rel=1e-9)
+    assert v["f1"] == pytest.approx(wn / (2 * math.pi), rel=1e-9)
+    assert v["T1"] == pytest.approx(2 * math.pi / wn, rel=1e-9)
+    assert v["Tq"] == pytest.approx(2000 * math.pi / wn, rel=1e-9)
+    assert v["X"] == pytest.approx(x / INCH, rel=1e-9)
+    assert v["Fk"] == pytest.approx(ft / LBF, rel=1e-9) and v["Ft"] == pytest.approx(ft / LBF,
+                                                                                      rel=1e-9)
+    assert v["Fa"] == pytest.approx(ft / LB, rel=1e-9)
+    assert v["Fr"] == pytest.approx(ft / LBF, rel=1e-9)      # over the block's 1 lbf weight
+    assert [result.units[n] for n in ("f1", "T1", "Tq", "Fk", "Fa")] == \
+        ["Hz", "s", "ms", "lbf", "m/s^2"]

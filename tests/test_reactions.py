@@ -127,7 +127,9 @@ def contact_actions(mech, kin, reactions):
     """The contacts' forces on the bodies and pins, written from the model's data here:
     a cord pulls its pulley along u at C + s r i u and its end back; a belt pulls the other
     disc back at its own tangent point; a disc on a line takes T along the line at
-    H = C + s r i u, its body -T there."""
+    H = C + s r i u, its body -T there; a disc on a circle or on another disc takes T along
+    the track's tangent t = i e (e from the track's centre O to the disc's) at
+    H = O + R e, the other disc (or the frame) -T there."""
     pos = kin.pos
     out = []
     for name, r in mech.rolling.items():
@@ -142,6 +144,12 @@ def contact_actions(mech, kin, reactions):
             else:
                 d = pos[r.track] + r.other_side * r.track_radius * 1j * u
                 out.append((r.other, -t * u, d, 0.0))
+        elif r.kind in ("circle", "disc"):
+            o = pos[r.track] if r.track in pos else pos[mech.bodies[r.other].points[0]]
+            e = (c - o) / np.abs(c - o)
+            h = o + r.track_radius * e
+            out += [(r.disc, t * 1j * e, h, 0.0),
+                    (r.other if r.kind == "disc" else FRAME, -t * 1j * e, h, 0.0)]
         else:
             body = mech.bodies[r.carrier]
             b, e = (body.guide.b, body.guide.c) if body.kind == "block" else body.points[:2]

@@ -236,6 +236,12 @@ class _Decomposer:
         #: tested there (:meth:`on_line`), once per pair of a point and a contact
         self.figure = {**mech.fixed, **mech.moving}
         self.figure_size = max((abs(z) for z in self.figure.values()), default=0.0) or 1.0
+        #: the points a contact may place: those it reads and those of their bodies (a
+        #: slider's point moves with the contact's points it carries)
+        self.near_contact: set = set(self.contacts_at)
+        for x in self.contacts_at:
+            for body in self.bodies_at.get(x, ()):
+                self.near_contact.update(body.points)
 
     def fail(self, detail: str, hint: str | None = None):
         return StructureError(detail, file=self.mech.file, hint=hint)
@@ -556,7 +562,7 @@ class _Decomposer:
     def dyad(self) -> bool:
         for p in self.mech.moving:
             if p in self.known or len(self.bodies_at.get(p, ())) < 2 and not self.driven \
-                    and p not in self.contacts_at:
+                    and p not in self.near_contact:
                 continue    # (one body, no driving length, no contact: one side at most)
             found = self.sides(p)
             if len(found) < 2:

@@ -489,3 +489,23 @@ def test_a_title_with_dollar_signs_is_drawn_as_text(tmp_path):
                                     'title: "price $\\\\frac{ and $ more"'), encoding="utf-8")
     code, out, err = run(["draw", path, "-o", tmp_path / "d.png"])
     assert code == 0, out + err
+
+
+def test_the_modes_labels_are_apart_and_off_the_mechanism():
+    """The modes plot's names (points, springs) lay on the blocks and on each other ('P1'
+    over its block and spring s1's zigzag)."""
+    import linkcli
+    from linkcli.pictures import vibration as pictures
+    from linkcli.pictures.drawing import label_boxes
+    mech = linkcli.load(os.path.join(ROOT, "tests", "data", "vibration",
+                                     "symmetric_chain_mode.yaml")).model
+    fig = pictures.modes_figure(mech)
+    for ax in fig.axes:
+        boxes = label_boxes(ax)
+        assert {t.get_text() for t, _ in boxes} >= {"P1", "P2", "P3", "s1", "s4"}
+        points, pads = _body_points(ax)
+        for i, (text, box) in enumerate(boxes):
+            assert not [o.get_text() for o, b in boxes[:i] if b.overlaps(box)], text.get_text()
+            inside = ((points[:, 0] >= box.x0 - pads) & (points[:, 0] <= box.x1 + pads) &
+                      (points[:, 1] >= box.y0 - pads) & (points[:, 1] <= box.y1 + pads))
+            assert not inside.any(), f"{text.get_text()!r} over the mechanism's lines"

@@ -23,7 +23,7 @@ from linkcli.errors import InputError, SolveError
 from linkcli.forces import vibration as vib
 from linkcli.model.units import ANGLE_DIM
 from linkcli.pictures.drawing import (COLORS, draw_elements, draw_mechanism, figure,
-                                      set_limits)
+                                      place_labels, set_limits)
 from linkcli.pictures.plotting import (IMAGE_FORMATS, _save_figure, _tell, _wrap, check_output,
                                        parse_sweep)
 from linkcli.pictures.scene import Scene, actuators, links
@@ -243,6 +243,8 @@ def modes_figure(mech, dpi: int = 100):
     title = _wrap(mech.title)
     fig.suptitle(title, fontsize=10)
     fig.tight_layout(rect=(0, 0.85 / height, 1, 1 - (0.25 + 0.2 * title.count("\n")) / height))
+    for ax in fig.axes:
+        place_labels(ax)
     return fig
 
 

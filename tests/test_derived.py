@@ -98,10 +98,7 @@ def test_unit_names_of_answers_and_of_files():
 @pytest.mark.parametrize("path", ["khurmi-8-1-slider-crank-accelerations.yaml",
                                   "docs/examples/textbook-quantities.yaml",
                                   "khurmi-5-2-quick-return.yaml", "padova-2020-07.yaml",
-                                  pytest.param("polimi-2001-02-07-vibration.yaml", marks=(
-                                      pytest.mark.xfail(reason="a mode shape of a length "
-                                                        "against an angle is shown in SI "
-                                                        "(m/rad) without its unit's name"))),
+                                  "polimi-2001-02-07-vibration.yaml",
                                   "polimi-2001-07-04-vibration.yaml"])
 def test_every_answers_unit_has_the_dimension_the_model_gives(path):
     """The display unit of each answer, read back, has the dimension model.dimensions

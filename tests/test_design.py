@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import linkcli
-from linkcli.errors import DesignError, InputError
+from linkcli.errors import DesignError
 from linkcli.answers.design import solve
 from linkcli.answers.sheet import evaluate
 

@@ -49,7 +49,7 @@ def test_components_are_the_pin_force_projected_on_the_axis(q):
     points and a fixed direction: F . u and F . (i u) from the x and y of the same pin."""
     mech = _with_components()
     r = mech.solve(q=q)
-    v, pts = r.values, r.points
+    v = r.values
     sol = mech.solver().positions(q / 1000.0).pos
     point = {p: complex(np.ravel(sol[p])[0]) for p in ("A", "B", "C")}
     rod = _unit(point["B"] - point["A"])

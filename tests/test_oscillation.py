@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import linkcli
-from linkcli.errors import InputError, SolveError
+from linkcli.errors import SolveError
 from linkcli.forces.oscillation import characteristic, largest
 
 from cli_helpers import run

@@ -120,7 +120,7 @@ def test_the_repro_gives_the_answer_raised_from_no_friction_and_names_the_wedged
     answers, n0 = free_body(*o, 30, 100, 0.0, -1.0, 0.0, 100.0, 1.0, 0.5)
     assert set(answers) == {1.0, -1.0} and n0 < 0 and a[0] - o[0] == pytest.approx(30)
     result = linkcli.load(path).solve()
-    (t_given, n_given), (t_other, n_other) = answers[-1.0], answers[1.0]
+    (t_given, n_given), (t_other, _) = answers[-1.0], answers[1.0]
     assert result.values["T"] == pytest.approx(t_given, rel=1e-9)
     assert result.values["N"] == pytest.approx(n_given, rel=1e-9)
     assert _warned_torque(result) == pytest.approx(t_other, rel=1e-5)

@@ -233,7 +233,6 @@ def stability(lag, terms, free) -> str:
 
 def _descend(lag, start: Terms, free, preloads) -> Equilibrium:
     """A minimum of V from the figure by a trust-region Newton method (module docstring)."""
-    mech = lag.mech
     c = lag.scales[free]
     figure = start.q
     ix = np.ix_(free, free)

@@ -11,7 +11,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from linkcli.input import expressions
 from linkcli.errors import InputError
 from linkcli.model.mechanism import Body, Mechanism, Quiz, split_rate
 from linkcli.model.units import Units

@@ -37,12 +37,7 @@ class OscillationSection:
 
     def oscillation_quantity(self, name, value, path, pool) -> Quantity:
         value = self.mapping(value, path, set(OSCILLATION) | {"unit", "part", "monic", "peak"})
-        kinds = [k for k in OSCILLATION if k in value]
-        if len(kinds) != 1:
-            raise self.error(path, "give exactly one of " + ", ".join(kinds))
-        kind = kinds[0]
-        where = path + (kind,)
-        arg = value[kind]
+        kind, where, arg = self.one_kind(value, path, OSCILLATION)
         coords = sorted(self.vibration.get("coordinates", []))
         if not coords:
             raise self.error(path, f"{kind} needs a vibration problem: declare its "

@@ -492,15 +492,18 @@ class AnswersSection:
             spinning[name] = ("disc", None)
         return bodies, spinning
 
+    def one_kind(self, value, path, kinds):
+        """(kind, its path, its argument) of a quantity written with exactly one of the
+        keys ``kinds``."""
+        found = [k for k in kinds if k in value]
+        if len(found) != 1:
+            raise self.error(path, "give exactly one of " + ", ".join(found))
+        return found[0], path + (found[0],), value[found[0]]
+
     def vibration_quantity(self, name, value, path, pool) -> Quantity:
         """A quantity of the vibration analysis (see docs/vibrations.md)."""
         value = self.mapping(value, path, set(VIBRATION) - set(OSCILLATION) | {"unit", "time"})
-        kinds = [k for k in VIBRATION if k in value]
-        if len(kinds) != 1:
-            raise self.error(path, "give exactly one of " + ", ".join(kinds))
-        kind = kinds[0]
-        where = path + (kind,)
-        arg = value[kind]
+        kind, where, arg = self.one_kind(value, path, VIBRATION)
         coords = self.vibration.get("coordinates", [])
         unit = value.get("unit")
         if unit is not None and not isinstance(unit, str):

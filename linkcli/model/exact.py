@@ -96,21 +96,19 @@ def _plain(x):
 def _operate(plain, symbolic):
     """The binary operator of both numbers: ``plain`` on values, ``symbolic`` on
     expressions; NotImplemented for anything but numbers."""
-    def forward(self, other):
+    def apply(a, b, other):
         if not isinstance(other, (int, float, complex)) or isinstance(other, bool):
             return NotImplemented
-        value = plain(_plain(self), _plain(other))
+        value = plain(_plain(a), _plain(b))
         if not isinstance(value, (int, float, complex)):
             return value
-        return make(value, symbolic(self.expr, expression(other)))
+        return make(value, symbolic(expression(a), expression(b)))
+
+    def forward(self, other):
+        return apply(self, other, other)
 
     def backward(self, other):
-        if not isinstance(other, (int, float, complex)) or isinstance(other, bool):
-            return NotImplemented
-        value = plain(_plain(other), _plain(self))
-        if not isinstance(value, (int, float, complex)):
-            return value
-        return make(value, symbolic(expression(other), self.expr))
+        return apply(other, self, other)
     return forward, backward
 
 

@@ -465,7 +465,6 @@ def explain_lines(mech) -> list:
     analysis = analyse(mech)
     lin = analysis.lin
     lag = lin.lag
-    names = [c.name for c in mech.coordinates]
     dyn = mech.dynamics
     el = mech.elements
     units = mech.units

@@ -384,6 +384,7 @@ def test_draw_labels_do_not_overlap(name):
     except StructureError as exc:       # a class-III group: draw solves the closed form
         assert exc.exit_code == 3 and "class-III" in str(exc)
         pytest.skip("draw refuses a class-III group")
+    fig.canvas.draw()                   # measured as saved: an equal aspect applied
     ax = fig.axes[0]
     frame = ax.get_window_extent(fig.canvas.get_renderer())
     boxes = label_boxes(ax)
@@ -500,6 +501,7 @@ def test_the_modes_labels_are_apart_and_off_the_mechanism():
     mech = linkcli.load(os.path.join(ROOT, "tests", "data", "vibration",
                                      "symmetric_chain_mode.yaml")).model
     fig = pictures.modes_figure(mech)
+    fig.canvas.draw()                   # measured as saved: an equal aspect applied
     for ax in fig.axes:
         boxes = label_boxes(ax)
         assert {t.get_text() for t, _ in boxes} >= {"P1", "P2", "P3", "s1", "s4"}

@@ -321,6 +321,7 @@ def place_labels(ax) -> None:
     import math
 
     import numpy as np
+    ax.apply_aspect()       # an equal-aspect axes takes its final box only when drawn
     renderer = ax.figure.canvas.get_renderer()
     frame = ax.get_window_extent(renderer)
     segments, pads = body_segments(ax, renderer)

@@ -58,7 +58,8 @@ class Continuation:
         (X, accepted): converged and no farther than JUMP shortest links."""
         pred = X + dX * (q_to - q_from)[:, None]
         Xc, conv = self.corrector.newton(pred, q_to, CORRECTOR_ITER)
-        return Xc, conv & (np.max(np.abs(Xc - pred), axis=1) <= self.jump)
+        n = self.corrector.system.n
+        return Xc, conv & (np.max(np.abs(Xc[:, :n] - pred[:, :n]), axis=1) <= self.jump)
 
     def _advance(self, X, dX, q, target):
         """Continue from (q, X) to ``target``, doubling the step after a success and
@@ -79,6 +80,12 @@ class Continuation:
             else:
                 h *= 0.5
         return X, dX, q, True
+
+    def reach(self, target):
+        """The configuration at ``target`` continued from (q0, x0), None when missed."""
+        X, _, _, arrived = self._advance(self.x0, self._tangent(self.x0, self.q0), self.q0,
+                                         float(target))
+        return X if arrived else None
 
     def _chain(self, state, targets, anchors):
         """Continue from ``state`` (q, X, dX) through ``targets`` in order, adding every
@@ -146,7 +153,7 @@ class Continuation:
     def track(self, qs):
         """Solve every driver value of the flat array ``qs``; returns (X (N, n), ok)."""
         qs = np.asarray(qs, dtype=float)
-        X = np.zeros((qs.size, self.corrector.system.n))
+        X = np.zeros((qs.size, self.corrector.system.width))
         ok = np.zeros(qs.size, bool)
         if qs.size == 0:
             return X, ok

@@ -101,9 +101,11 @@ class NewtonSolver(Corrector):
             return None
         return Continuation(self, drawn, X[0], self.q_scale).reach(self.q0)
 
-    def _figure(self):
-        """The unknowns at the figure's positions, a driving crank's tip turned to q0:
-        P_tip = P_pivot +- |P_tip - P_pivot| e^{i q0}."""
+    def _figure(self, q=None):
+        """The unknowns at the figure's positions, a driving crank's tip turned to q
+        (default q0): P_tip = P_pivot +- |P_tip - P_pivot| e^{i q}; a point driven along x
+        (y) moved to x = q (y = q)."""
+        q = self.q0 if q is None else q
         moving = dict(self.mech.moving)
         d = self.mech.driver
         if d.kind == "angle":
@@ -111,8 +113,15 @@ class NewtonSolver(Corrector):
                 if tip in moving and pivot in self.mech.fixed:
                     arm = abs(moving[tip] - self.mech.fixed[pivot])
                     moving[tip] = self.mech.fixed[pivot] + sign * arm * complex(
-                        np.cos(self.q0), np.sin(self.q0))
+                        np.cos(q), np.sin(q))
+        elif d.kind in ("x", "y") and d.a in moving:
+            z = moving[d.a]
+            moving[d.a] = complex(q, z.imag) if d.kind == "x" else complex(z.real, q)
         return _unknowns([moving[name] for name in self.system.moving], 1)[0]
+
+    def figure_starts(self, qs):
+        """Starts (N, width) for the driver values ``qs``: the figure, the crank turned."""
+        return self.system.augment(np.array([self._figure(q) for q in qs]))
 
     # the Solver interface --------------------------------------------------------
     def track(self, qs):

@@ -16,7 +16,8 @@ from linkcli.kinematics.continuation import Continuation
 from linkcli.kinematics.corrector import CHUNK, MAX_ITER, Corrector, solve_linear
 from linkcli.errors import AssemblyError, InputError
 from linkcli.kinematics.closed_form import (Kinematics, assembly_error, far_from_figure,
-                                           figure_coordinates, length_text, singular_error, where_text)
+                                           figure_coordinates, length_text, singular_error,
+                                           where_text)
 from linkcli.kinematics.topology import one_dof
 
 __all__ = ["Constraints", "NewtonSolver", "DEFAULT_TOL", "SINGULAR_NEWTON"]

@@ -330,7 +330,7 @@ class Solver:
                 return [Caution("unassembled", f"the file's own position cannot be assembled: "
                                 f"{group.describe()} {where_text(mech, kin.q, True)} {reason} "
                                 "(the branch is the figure's)", mech.file)]
-        points = [complex(np.ravel(z)[0]) for z in pos.values()]
+        points = [complex(np.ravel(pos[p])[0]) for p in mech.points if p in pos]
         size = max(abs(z - sum(points) / len(points)) for z in points) or 1.0
         unit, f = mech.units.display("length", 0)
         far = {p: abs(complex(np.ravel(pos[p])[0]) - mech.moving[p]) for p in mech.moving

@@ -83,7 +83,7 @@ def linearise(lag: Lagrangian) -> Linear:
                          file=mech.file, hint="leave at least one coordinate without a support motion")
     t = eq.terms
     ix = np.ix_(free, free)
-    require_mass(mech, t.M, free)
+    require_mass(mech, t.M, free, lag.scales)
     elements = mech.elements
     supports = np.zeros(len(imposed), dtype=complex)
     for s in (elements.supports.values() if elements else ()):

@@ -368,6 +368,14 @@ class Lagrangian:
         return V
 
 
+def energy_units(A, scales):
+    """D A D, D = diag(``scales``) (1 rad for an angle, the mechanism's size for a length):
+    a matrix of the coordinates (M, K, R) whose entries mix kg with kg m^2 (N/m with N m)
+    brought to one unit, so that its entries compare whatever the length unit."""
+    d = np.asarray(scales, float)
+    return A * (d[:, None] * d[None, :])
+
+
 def require_mass(mech, M, free, scales) -> None:
     """Refuse a mass matrix that is not positive definite on the free coordinates,
     naming the coordinate that carries no mass.
@@ -377,10 +385,9 @@ def require_mass(mech, M, free, scales) -> None:
     eigenvalue compares with the largest diagonal entry whatever the length unit; M itself
     mixes kg (lengths) with kg m^2 (angles), and a small mechanism's inertias would read as
     no mass against its translations' masses."""
-    Mf = M[np.ix_(free, free)]
-    d = np.asarray(scales, float)[free]
-    values, vectors = np.linalg.eigh(Mf * d[:, None] * d[None, :])
-    scale = max(float(np.max(np.abs(np.diag(Mf) * d * d))), 1e-300)
+    Mf = energy_units(M[np.ix_(free, free)], np.asarray(scales, float)[free])
+    values, vectors = np.linalg.eigh(Mf)
+    scale = max(float(np.max(np.abs(np.diag(Mf)))), 1e-300)
     if values[0] <= 1e-12 * scale:
         index = free[int(np.argmax(np.abs(vectors[:, 0])))]
         name = mech.coordinates[index].name

@@ -513,7 +513,8 @@ def draw(file, k, output, exam, lang, method):
     _not_an_input(output, file)
     if exam:
         from linkcli.pictures.exam import draw_exam
-        draw_exam(_load(file, k, method=method), output, lang=lang, method=method)
+        # the problem as asked: a design question's unknowns are not drawn solved
+        draw_exam(_load(file, k, designed=False), output, lang=lang, method=method)
         return
     from linkcli.pictures.plotting import draw as make
     make(_load(file, k), output)

@@ -122,3 +122,60 @@ def test_the_trials_are_solved_by_the_method_asked():
     # the closed form cannot solve it at any value: the structure's own advice, no trial's
     code, out, err = run(["solve", file])
     assert code == 3 and "--method newton" in err and "narrow the search" not in err, err
+
+
+# --- the documents of a design question ------------------------------------------------------
+def _quiz_text(file, lang="en"):
+    import html
+    import xml.etree.ElementTree as ET
+    from linkcli.exports.moodle import export
+    from linkcli.input.source import load_file
+    root = ET.fromstring(export(load_file(file), None, lang=lang, figure=False))
+    (q,) = [q for q in root if q.get("type") == "cloze"]
+    return html.unescape(q.find("questiontext/text").text)
+
+
+def _crank_statement_holds(text):
+    """The crank's length is asked, never stated at the file's figure value (OA = 1 m);
+    what the unknown is and the target with its unit are said."""
+    assert "OA = 1 m" not in text and "OA = a" in text, text
+    assert "find a (the length of OA) such that c = 1.9 m (x of B)" in text, text
+
+
+def test_the_quiz_asks_the_unknown_and_states_the_target():
+    file = os.path.join(ROOT, "docs", "examples", "design-crank.yaml")
+    text = _quiz_text(file)
+    _crank_statement_holds(text)
+    boxes = re.findall(r"<tr><td>(\w+)</td><td>([^<]*)</td><td>\{1:NUMERICAL:=([-\d.]+)", text)
+    assert [(n, d) for n, d, _ in boxes] == [("a", "the length of OA"),
+                                             ("beta", "angle of A→B from +x")], boxes
+    assert boxes[0][2] == f"{crank_roots()[0]:.4f}"
+    # beta, the rod's angle at the solution, by the closed form: A = a (cos 45, sin 45)
+    a = crank_roots()[0]
+    beta = math.degrees(math.atan2(-a / math.sqrt(2), 1.9 - a / math.sqrt(2))) % 360
+    assert boxes[1][2] == f"{beta:.4f}"
+
+
+def test_the_worked_solution_is_that_of_the_solution():
+    """Its data ask the unknown, its closure is at the solution (A = a (cos 45, sin 45) with
+    a = 0.9019 m, B at c = 1.9 m), and its results give a, not c back."""
+    from linkcli.exports.worked import document
+    from linkcli.input.source import load_file
+    text = document(load_file(os.path.join(ROOT, "docs", "examples", "design-crank.yaml")),
+                    target="markdown", lang="en", figure=False)
+    _crank_statement_holds(text)
+    a = crank_roots()[0]
+    assert f"A = ({a / math.sqrt(2):.6g}, {a / math.sqrt(2):.6g}) m" in text, text
+    assert "B = (1.9, 0) m" in text, text
+    results = text[text.index("## Results"):]
+    assert re.search(r"^\| a \| 0\\\.9019 \| m \|$", results, re.M), results
+    assert not re.search(r"^\| c \|", results, re.M), results
+
+
+def test_the_exam_figure_names_the_unknown_length():
+    from linkcli.api import load
+    from linkcli.pictures.exam import exam_figure
+    fig = exam_figure(load(os.path.join(ROOT, "docs", "examples", "design-crank.yaml")).model)
+    texts = [t.get_text() for ax in fig.axes for t in ax.texts]
+    assert "a" in texts and "1 m" not in texts, texts
+    assert f"{math.sqrt(2):.10g} m" in texts          # AB, data

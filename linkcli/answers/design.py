@@ -69,6 +69,7 @@ class Solution:
     method: str
     roots: list = field(default_factory=list)     # one unknown: every root found
     notes: list = field(default_factory=list)     # what the search met on the way
+    units: dict = field(default_factory=dict)     # each target's display unit
 
 
 def unsolved(mech) -> bool:
@@ -90,6 +91,13 @@ def solve(mech, evaluate, method="closed", tol=None) -> Solution:
     if found is None:
         found = kept[(method, tol)] = _solve(mech, evaluate, method, tol)
     return found
+
+
+def asked(mech, names) -> list:
+    """``names`` without the targets of ``mech``'s design question: a course document gives
+    the targets as data and asks the unknowns, not the targets back."""
+    targets = {t.name for t in mech.design.targets} if mech.design is not None else set()
+    return [n for n in names if n not in targets]
 
 
 def answer(mech, name):
@@ -285,7 +293,8 @@ def _one(mech, residuals, unknown) -> Solution:
         raise _no_root(mech, residuals, unknown, scan, jumps)
     value = _choose(mech, residuals, roots)
     return Solution({unknown.name: value}, residuals.variant([value]),
-                    residuals.evaluations, "scan and Brent's method", roots, notes)
+                    residuals.evaluations, "scan and Brent's method", roots, notes,
+                    dict(residuals.units))
 
 
 def _polish(residuals, a, b) -> float:
@@ -511,7 +520,7 @@ def _several(mech, residuals) -> Solution:
     if condition > SINGULAR:
         raise _singular(mech, residuals, x, condition)
     return Solution(dict(zip(residuals.names, map(float, x))), residuals.variant(x),
-                    residuals.evaluations, method, [], [])
+                    residuals.evaluations, method, [], [], dict(residuals.units))
 
 
 def _jacobian(residuals, x, r) -> np.ndarray:

@@ -1,10 +1,12 @@
 """Design unknowns (``find:``): the values of parameters that give answers their targets.
 
 Each trial builds the file again with the unknowns' values (input.document.rebuild) and
-solves the targets as ``solve`` does, by the method asked (closed form or Newton) (any answer: kinematics, statics, dynamics, limits,
-vibrations, expressions); the residual of a target is (answer - target) / |target|
-(the answer itself where the target is 0), both in the answer's display unit, an angle's
-difference taken within half a turn.
+solves the targets as ``solve`` does (any answer: kinematics, statics, dynamics, limits,
+vibrations, expressions), by the method asked (the closed form or Newton's); the residual
+of a target is (answer - target) / |target| (the answer itself where the target is 0),
+both in the answer's display unit, an angle's difference taken within half a turn.  A
+trial that raises an error is a trial without an answer, except an error that holds at
+every value (the structure's, a command-line option's): that is the answer.
 
 - One unknown in an interval [a, b]: the residual is sampled at SAMPLES values (evenly, or
   geometrically, PER_DECADE a decade, where b / a > 10 with a > 0); next to a sample that
@@ -23,8 +25,9 @@ difference taken within half a turn.
   unknowns.
 
 Where no value gives the targets, the error says so with the targets' values at the ends
-of the interval (or the residuals where the search stopped); a trial where the mechanism
-cannot be assembled or solved is named with its values (DesignError, exit 3).
+of the interval (or the residuals where the search stopped) and the jumps it passes the
+target by; a trial where the mechanism cannot be assembled or solved next to a root is
+named with its values (DesignError, exit 3).
 """
 from __future__ import annotations
 

@@ -148,3 +148,48 @@ def test_the_round_trip_catches_a_search_that_stops_at_its_start(monkeypatch):
     monkeypatch.setattr(design, "RESIDUAL", math.inf)
     problems = roundtrip(SPRING)
     assert len(problems) >= 2, problems
+
+
+# --- the question as the documents state it --------------------------------------------------
+def _started_at(doc, factor):
+    """``doc`` with each unknown's value in ``params`` (the figure's) times ``factor``: the
+    same question drawn at other values."""
+    import copy
+    from linkcli.input.source import Document
+    data = copy.deepcopy(doc.data)
+    for name in data["find"]["unknowns"]:
+        data["params"][name] = f"({data['params'][name]}) * {factor}"
+    return Document(doc.name, data, doc.lines, doc.raw)
+
+
+def stated(doc, lang="en"):
+    """What the documents state of the question: the data lines and the exam figure's
+    texts (a figure's geometry apart)."""
+    from linkcli.answers.statement import data_lines
+    from linkcli.pictures.exam import exam_figure
+    mech = build(doc)
+    method = METHOD.get(os.path.basename(doc.name), "closed")
+    texts = [t.get_text() for ax in exam_figure(mech, lang, method).axes for t in ax.texts]
+    return data_lines(mech, lang), sorted(texts)
+
+
+ASKED = [p for p in FILES if os.path.basename(p) not in REFUSED]
+
+
+@pytest.mark.parametrize("path", ASKED, ids=os.path.basename)
+def test_the_statement_does_not_give_the_figures_value_of_an_unknown(path):
+    """The data and the exam figure of a design question are the same whatever value the
+    file gives its unknowns for the figure: none of them is stated (it is the answer)."""
+    doc = load_file(path)
+    assert stated(doc) == stated(_started_at(doc, 1.0625))
+
+
+def test_the_statement_check_catches_an_unknown_stated_at_its_value(monkeypatch):
+    """Planted: the data and the figure state every datum at the file's value."""
+    from linkcli.answers import statement
+    monkeypatch.setattr(statement, "_unknowns_stated", lambda mech, lines, lang: lines)
+    monkeypatch.setattr(statement, "unknown_datum", lambda *a, **k: None)
+    import linkcli.pictures.exam as exam
+    monkeypatch.setattr(exam, "unknown_datum", lambda *a, **k: None)
+    doc = load_file(CRANK)
+    assert stated(doc) != stated(_started_at(doc, 1.0625))

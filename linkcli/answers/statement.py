@@ -519,16 +519,20 @@ def _unknowns_stated(mech, lines, lang) -> list:
 
 def _as_unknown(parts, i, there, name, start, other, lang) -> str:
     """The number ``parts[i]`` (``there`` at the other value) as the unknown ``name``: its
-    own name where the datum is the unknown as the file writes it (its unit after it
-    dropped), else that it depends on it."""
+    own name where the datum is the unknown as the file writes it, a multiple of it ('8 ks')
+    where it is proportional, else '?' and that it depends on it; never its number."""
     import re
+
     def read(text):
         return float(text.replace(",", ".")) if lang == "it" else float(text)
-    if math.isclose(read(parts[i]), start, rel_tol=CLOSE) and \
-            math.isclose(read(there), other, rel_tol=CLOSE):
-        parts[i + 1] = re.sub(r"^(°| [^\s,;()]+)", "", parts[i + 1])
+    here, varied = read(parts[i]), read(there)
+    ratio = here / start if start else math.nan
+    if not math.isclose(varied / other, ratio, rel_tol=1e-6):
+        return f"? ({WORDS[lang]['depends'].format(name=name)})"
+    parts[i + 1] = re.sub(r"^(°| [^\s,;()]+)", "", parts[i + 1])    # the unknown's unit
+    if math.isclose(ratio, 1.0, rel_tol=CLOSE):
         return name
-    return f"{parts[i]} ({WORDS[lang]['depends'].format(name=name)})"
+    return f"{number(ratio, lang)} {name}"
 
 
 def _design(w, solution=None) -> list:

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import cmath
 import math
+import weakref
 from decimal import Decimal
 
 from linkcli.model.mechanism import FRAME, split_rate
@@ -460,10 +461,9 @@ NUMBER = r"-?\d+(?:[.,]\d+)?(?:e[-+]?\d+)?"
 def variants(mech) -> list:
     """(name, start, other value, the mechanism built with it) of each unknown of ``mech``'s
     design question that can be built at another value (kept per mechanism)."""
-    import weakref
     from linkcli.errors import LinkcliError
     from linkcli.input.document import rebuild
-    kept = _VARIANTS.setdefault("kept", weakref.WeakKeyDictionary())
+    kept = _VARIANTS
     if mech not in kept:
         out = []
         for u in mech.design.unknowns:
@@ -477,7 +477,7 @@ def variants(mech) -> list:
     return kept[mech]
 
 
-_VARIANTS: dict = {}
+_VARIANTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
 def unknown_datum(mech, measure, si_factor=1.0) -> str | None:

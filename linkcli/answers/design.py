@@ -11,7 +11,7 @@ every value (the structure's, a command-line option's): that is the answer.
 - One unknown in an interval [a, b]: the residual is sampled at SAMPLES values (evenly, or
   geometrically, PER_DECADE a decade, where b / a > 10 with a > 0); next to a sample that
   cannot be solved, the edge of what can is found by bisection (geometric over decades),
-  and the part that can is sampled again when few samples fell in it.  Each change of sign
+  and each part that can is sampled again.  Each change of sign
   is refined by Brent's method (scipy.optimize.brentq) to XTOL of the root (not of the
   interval); between samples where |r| dips without changing sign, a bounded minimisation
   of |r| looks for two roots close together.  A root must be one: the answer there is its
@@ -247,12 +247,13 @@ def _decades(lo: float, hi: float) -> float:
     return math.log10(hi) - math.log10(lo) if lo > 0 else 0.0
 
 
-def samples(lo: float, hi: float, count: int = SAMPLES) -> np.ndarray:
-    """At least ``count`` values from lo to hi: geometric, PER_DECADE a decade (at most
+def samples(lo: float, hi: float, count: int = SAMPLES, per_decade: int = PER_DECADE) \
+        -> np.ndarray:
+    """At least ``count`` values from lo to hi: geometric, ``per_decade`` a decade (at most
     MOST), for a positive range over a decade; else even."""
     decades = _decades(lo, hi)
     if decades > 1:
-        return np.geomspace(lo, hi, max(count, min(MOST, math.ceil(PER_DECADE * decades) + 1)))
+        return np.geomspace(lo, hi, max(count, min(MOST, math.ceil(per_decade * decades) + 1)))
     return np.linspace(lo, hi, count)
 
 
@@ -386,11 +387,12 @@ class Scan:
                     bad = x
 
     def fill(self) -> None:
-        """Each run of samples that can be solved, sampled again where fewer than SAMPLES
-        fell in it (the scan met mostly values where the file cannot be solved)."""
+        """Each run of samples that can be solved sampled again from end to end, SAMPLES
+        values (the scan met values where the file cannot be solved, and the bisections
+        crowd the edges)."""
         for run in self.runs():
-            if 1 < len(run) < SAMPLES:
-                self.at(samples(run[0][0], run[-1][0])[1:-1])
+            if len(run) > 1:
+                self.at(samples(run[0][0], run[-1][0], per_decade=0)[1:-1])
 
 
 def _brackets(residuals, good) -> list:

@@ -484,7 +484,7 @@ def _several(mech, residuals) -> Solution:
     values, or least squares within the intervals."""
     from scipy.optimize import least_squares, root
     unknowns = mech.design.unknowns
-    x0 = np.array([u.start if u.start is not None else 0.5 * (u.lo + u.hi) for u in unknowns])
+    x0 = np.array([u.start if u.start is not None else middle(u.lo, u.hi) for u in unknowns])
     bounded = any(u.interval for u in unknowns)
     try:
         start = residuals(x0)

@@ -13,7 +13,7 @@ from html.parser import HTMLParser
 sys.path.insert(0, os.path.dirname(__file__))
 
 from cloze_grammar import parse as parse_cloze  # noqa: E402
-from linkcli.answers.design import asked  # noqa: E402
+from linkcli.runs.design import asked  # noqa: E402
 from linkcli.exports import moodle  # noqa: E402
 from linkcli.input.source import load_file  # noqa: E402
 from linkcli.model.mechanism import REPORT_SECTIONS  # noqa: E402

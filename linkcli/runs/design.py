@@ -82,8 +82,8 @@ def unsolved(mech) -> bool:
 
 def resolved(mech, evaluate, method="closed", tol=None):
     """``mech`` itself, or, where it asks a design question, the mechanism built with the
-    unknowns' solution (solved once per mechanism and method; ``evaluate`` is
-    answers.sheet's, which solves a trial's targets by ``method``)."""
+    unknowns' solution (solved once per mechanism and method; ``evaluate`` is runs.sheet's,
+    which solves a trial's targets by ``method``)."""
     return solve(mech, evaluate, method, tol).mech if unsolved(mech) else mech
 
 

@@ -386,7 +386,7 @@ def data_lines(mech, lang: str = "en", solution=None) -> list[str]:
     a design question, a datum that depends on an unknown is stated as the unknown, not at
     the value the file gives it for the figure, and the last line asks the unknowns, each
     named by what it is, with the targets in their units (those of ``solution``,
-    answers.design's, where the file gives none)."""
+    runs.design's, where the file gives none)."""
     w = Writer(mech, lang)
     lines = _lines(w)
     if mech.design is not None and not mech.design.fixed:

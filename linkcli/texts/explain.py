@@ -39,7 +39,7 @@ def explain(mech) -> str:
             if group.kind in ("RRR", "RRP", "PRR", "RPR") else ""
         lines.append(f"  {step}. {group.describe()}{branch}")
     from linkcli.kinematics.solvers import figure_cautions
-    lines += [f"  {c}" for c in figure_cautions(mech)]
+    lines += [f"  {c}" for c in figure_cautions(asked)]     # the figure: the file's values
     if any(b.kind == "block" and _turns(mech, b.guide.carrier) for b in mech.bodies.values()):
         lines.append("  (sliders on turning guides add Coriolis terms to the accelerations)")
     if mech.elements is not None:

@@ -82,7 +82,7 @@ class Reader:
         #: parameters given other values than the file's (input.document.build)
         self.overrides: dict = {}
         #: path -> (text, unit kind) of every value written as an expression: what depends
-        #: on the parameters (answers.coefficients evaluates them over arrays)
+        #: on the parameters (runs.coefficients evaluates them over arrays)
         self.written: dict = {}
         #: (|value| in m, path) of the largest length read so far
         self.largest: tuple = (0.0, ())

@@ -553,9 +553,6 @@ def frame_class(doc, name, seen=()):
     if kind == "maximum" and name not in seen:
         inner = frame_class(doc, spec[kind], seen + (name,))
         return inner if inner in ("invariant", "angle") else None
-    if kind in ("at_maximum", "at_minimum") and name not in seen:
-        inner = frame_class(doc, spec[kind], seen + (name,))
-        return "driver" if inner in ("invariant", "angle") else None
     if kind == "equilibrium":
         coordinate = (doc.get("coordinates") or {}).get(spec[kind]) or {}
         ckind = next(iter(coordinate), None)

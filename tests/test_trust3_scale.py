@@ -54,27 +54,27 @@ def test_huge_crank_is_refused_by_name():
     assert out == ""
     assert "links.OA.length" in err and "1e+200 m" in err
     assert "huge-crank-assembles.yaml:12" in err
-    assert "1e+100 m" in err                   # the bound it exceeds
+    assert "1e+75 m" in err                    # the bound it exceeds
 
 
 def test_huge_crank_within_range_falls_short(tmp_path):
-    """The same file at a = 1e99 m is carried: the rod (sqrt 2 m) cannot reach the guide
+    """The same file at a = 1e74 m is carried: the rod (sqrt 2 m) cannot reach the guide
     from A at a sin 45: the shortfall a sin 45 - sqrt 2 is named (4 digits)."""
-    text = (DATA / "huge-crank-assembles.yaml").read_text().replace("a: 1e200", "a: 1e99")
-    path = tmp_path / "crank-1e99.yaml"
+    text = (DATA / "huge-crank-assembles.yaml").read_text().replace("a: 1e200", "a: 1e74")
+    path = tmp_path / "crank-1e74.yaml"
     path.write_text(text)
     code, out, err = run(["solve", path])
     assert code == 3, err
-    short = 1e99 * math.sin(math.radians(45)) - math.sqrt(2)
+    short = 1e74 * math.sin(math.radians(45)) - math.sqrt(2)
     assert f"the links fall short by {short:.4g} m" in err
 
 
 @pytest.mark.parametrize("key, text", [
-    ("points.B[0]", "points: {A: [0.7, 0.7], B: [1e101, 0]}"),
+    ("points.B[0]", "points: {A: [0.7, 0.7], B: [1e76, 0]}"),
     ("sliders.B.guide.y", "sliders: {B: {point: B, guide: {y: 1e300}}}"),
 ])
 def test_any_length_beyond_range_is_refused(tmp_path, key, text):
-    """Coordinates and guides' offsets are lengths too: each beyond 1e100 m is named."""
+    """Coordinates and guides' offsets are lengths too: each beyond 1e75 m is named."""
     base = (DATA / "huge-crank-assembles.yaml").read_text().replace("a: 1e200", "a: 1")
     field = text.split(":")[0]
     lines = [text if line.startswith(field + ":") else line for line in base.splitlines()]
@@ -86,13 +86,13 @@ def test_any_length_beyond_range_is_refused(tmp_path, key, text):
 
 
 def test_range_in_the_files_unit(tmp_path):
-    """The bound is in metres whatever the file's unit: 1e102 mm (1e99 m) is carried."""
+    """The bound is in metres whatever the file's unit: 1e77 mm (1e74 m) is carried."""
     text = (DATA / "huge-crank-assembles.yaml").read_text().replace(
-        "length: m", "length: mm").replace("a: 1e200", "a: 1e102")
+        "length: m", "length: mm").replace("a: 1e200", "a: 1e77")
     path = tmp_path / "mm.yaml"
     path.write_text(text)
     code, _, err = run(["solve", path])
-    assert code == 3 and "fall short by 7.071e+101 mm" in err, err
+    assert code == 3 and "fall short by 7.071e+76 mm" in err, err
 
 
 # --- the smallest scale ----------------------------------------------------------------------
@@ -104,7 +104,7 @@ def test_tiny_scale_is_refused_by_name_not_called_a_toggle():
     assert "key 'points.B[0]'" in err           # the largest length the file gives
 
 
-@pytest.mark.parametrize("s", ["1e-99", "1e-60", "1e-3", "1", "1e60", "1e99"])
+@pytest.mark.parametrize("s", ["1e-74", "1e-40", "1e-3", "1", "1e40", "1e74"])
 @pytest.mark.parametrize("method", ["closed", "newton"])
 def test_regular_position_solves_at_every_carried_scale(tmp_path, s, method):
     """c/a = cos 45 + sqrt(2 - sin^2 45) = 1.9319 at every scale the solvers carry, and
@@ -119,7 +119,7 @@ def test_regular_position_solves_at_every_carried_scale(tmp_path, s, method):
     assert values["cdot"] == pytest.approx(rate * math.pi / 180, rel=1e-9)
 
 
-@pytest.mark.parametrize("s", ["1e-99", "1", "1e99"])
+@pytest.mark.parametrize("s", ["1e-74", "1", "1e74"])
 def test_toggle_is_a_toggle_at_every_scale(tmp_path, s):
     """The rod b = a sin 45 reaches the guide perpendicularly at 45 deg: a toggle at every
     scale (the test of zero is relative to the mechanism's size, not in metres)."""

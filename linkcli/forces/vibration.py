@@ -270,9 +270,9 @@ def dynamic_matrix(lin: Linear, omega):
     D = lin.K - w ** 2 * lin.M + 1j * w * lin.R
     d = np.asarray(lin.lag.scales, float)[lin.free]
     scale = energy_units(np.abs(lin.K) + w ** 2 * np.abs(lin.M) + w * np.abs(lin.R), d)
-    rows = np.prod(np.sum(scale, axis=-1), axis=-1)
-    ratio = np.abs(np.linalg.det(energy_units(D, d))) / np.where(rows > 0, rows, 1.0)
-    return D, ratio < SINGULAR
+    rows = np.sum(scale, axis=-1)[..., None]       # each row over its magnitude before the
+    ratio = np.abs(np.linalg.det(energy_units(D, d) / np.where(rows > 0, rows, 1.0)))
+    return D, ratio < SINGULAR                      # determinant: no power of the size in it
 
 
 def response(lin: Linear, omega):

@@ -19,15 +19,16 @@ NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*\Z")   # \Z: no trailing newline
 WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 BODIES = ("link", "slider", "actuator", "disc")   # named bodies: never the fixed one's name
 #: The range of lengths (SI, m) the solvers carry in double precision.  They square lengths
-#: (distances, discriminants, Newton's |g|^2) and multiply a square by a length or by the
-#: rounding 2.3e-13 (the bounds of "zero up to rounding"), so the cube of the mechanism's
-#: size must be a normal double: every length is at most LARGEST_LENGTH (1e300, with 1e8 to
-#: spare below the overflow at 1.8e308) and the file's largest at least SMALLEST_SIZE
-#: (1e-300, above the subnormals that start at 2.2e-308, where a square loses its digits
-#: and a regular position reads as a toggle).  A tiny length in a mechanism of ordinary
-#: size is only a small number, and is kept.
-LARGEST_LENGTH = 1e100
-SMALLEST_SIZE = 1e-100
+#: (distances, discriminants, Newton's |g|^2), multiply a square by a length or by the
+#: rounding 2.3e-13 (the bounds of "zero up to rounding"), and multiply a speed by an
+#: acceleration (the tests of a rate's zero) or two energies (the vibrations' determinants):
+#: products of four lengths, which must stay normal doubles.  Every length is at most
+#: LARGEST_LENGTH (its fourth power 1e300, below the overflow at 1.8e308) and the file's
+#: largest at least SMALLEST_SIZE (1e-300, above the subnormals that start at 2.2e-308, where
+#: a product loses its digits and a regular position reads as a toggle).  A tiny length in
+#: a mechanism of ordinary size is only a small number, and is kept.
+LARGEST_LENGTH = 1e75
+SMALLEST_SIZE = 1e-75
 
 
 def reserved_parameter(name: str) -> str | None:

@@ -49,11 +49,19 @@ def _evaluate(mech, q, qdot, qddot, names, method, tol) -> Result:
             return limits.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
         return quantities.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
     from linkcli.answers.quantities import vibration
+    refuse_driving(mech, q, qdot, qddot, method)
+    return vibration.evaluate(mech, list(names), Result(mech))
+
+
+def refuse_driving(mech, q=None, qdot=None, qddot=None, method="closed"):
+    """A vibration problem (``elements``) is solved at its static equilibrium, by the
+    closed form: driver values, rates or another method are refused by name."""
+    if mech.elements is None:
+        return
     if q is not None or qdot is not None or qddot is not None or method != "closed":
         raise InputError("a vibration problem is solved at its static equilibrium: it takes no "
                          "driver values, rates or method", file=mech.file,
                          hint="drop q, qdot, qddot and --method")
-    return vibration.evaluate(mech, list(names), Result(mech))
 
 
 def _asks_limits(mech, names) -> bool:

@@ -53,7 +53,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from linkcli.answers.formats import fmt
+from linkcli.answers.formats import fmt, without_noise
 from linkcli.answers.formats import heading as section_heading
 from linkcli.answers.quantities import angle_period, report_names
 from linkcli.answers.sheet import evaluate
@@ -298,8 +298,9 @@ def question_html(mech, result, places, boxes, lang, figure_name) -> str:
 
 
 def _solved(mech, method):
-    try:
-        return evaluate(mech) if method == "closed" else evaluate(mech, method=method)
+    try:       # a zero's rounding noise is 0, as solve prints it
+        return without_noise(evaluate(mech) if method == "closed" else
+                             evaluate(mech, method=method))
     except LinkcliError as exc:
         cls = SolveError if isinstance(exc, SolveError) else InputError
         raise cls(_digit(mech) + exc.detail, file=exc.file, key=exc.key, line=exc.line,

@@ -124,6 +124,14 @@ def test_draw_with_newton_refuses_a_vibration_problem_by_name(tmp_path, extra):
     assert "a vibration problem is solved at its static equilibrium" in err and "--method" in err
 
 
+def test_sweep_vary_with_newton_refuses_a_vibration_problem_by_name():
+    """As solve, draw and explain do (it ignored --method, printing the closed form's)."""
+    path = os.path.join(MECHANISMS, "polimi-2001-09-18-vibration.yaml")
+    code, out, err = run(["sweep", path, "--vary", "ks=50:150:2", "--method", "newton"])
+    assert code == 2 and not out
+    assert "a vibration problem is solved at its static equilibrium" in err
+
+
 # --- explain --method newton --------------------------------------------------------------------
 def test_explain_with_newton_lists_the_equations_it_solves():
     """The triad's four moving points B, C, D, E: eight unknowns, eight equations (two per

@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.answers.quantities import report_names
+from linkcli.answers.sheet import refuse_driving
 from linkcli.answers.sweep import Block, MAX_POSITIONS, check_names, listing
 from linkcli.errors import InputError, LinkcliError
 from linkcli.model.dimensions import param_unit_name
@@ -116,6 +117,7 @@ class Variation:
     def __init__(self, mech, name, values, names=None, key="--vary", method="closed", tol=None,
                  block: int = BLOCK):
         check_parameter(mech, name, key)
+        refuse_driving(mech, method=method)     # a vibration problem: its equilibrium's
         self.names = check_names(mech, names or None, "--names") if names else \
             report_names(mech)
         self.values = np.asarray(values, dtype=float).ravel()
@@ -156,8 +158,7 @@ class Variation:
         for i in np.nonzero(~solved)[0]:
             try:
                 variant = rebuild(self.mech, {self.name: float(values[i])})
-                result = evaluate(variant, names=self.names) if variant.elements is not None \
-                    else evaluate(variant, names=self.names, method=self.method, tol=self.tol)
+                result = evaluate(variant, names=self.names, method=self.method, tol=self.tol)
             except LinkcliError as exc:
                 self.first_error = self.first_error or exc
                 _gap(self, offset + i, values[i], exc)

@@ -7,6 +7,7 @@ import os
 import shutil
 import subprocess
 import sys
+import gc
 import tracemalloc
 import xml.etree.ElementTree as ET
 
@@ -224,6 +225,7 @@ def _vary_peak(count: int) -> int:
     mech = load(os.path.join(MECHANISMS, "polimi-crank-slider.yaml")).model
     name, values = vary_mod.parse_vary(f"a=1:1.5:{count}")
     variation = vary_mod.Variation(mech, name, values, ["c", "cdot"])
+    gc.collect()
     tracemalloc.start()
     try:
         vary_mod.write(variation, "csv", None, lambda text: None)
@@ -239,8 +241,10 @@ def _growth() -> float:
 
 def test_sweep_vary_memory_does_not_grow_with_the_values():
     """Four times the values, not four times the memory (each value's variant of the file
-    and its solver were kept: 415 MB at 2e4 values)."""
-    assert _growth() < 1.5
+    and its solver were kept: 415 MB at 2e4 values).  What is left grows by the cyclic
+    garbage collector's timing (a mechanism and its solver refer to each other), 1.2 to 1.6
+    times here; a cache that keeps every variant gives 3.8."""
+    assert _growth() < 2.0
 
 
 def test_the_memory_check_catches_a_cache_that_keeps_every_variant(monkeypatch):
@@ -248,7 +252,7 @@ def test_the_memory_check_catches_a_cache_that_keeps_every_variant(monkeypatch):
     whose solvers hold their mechanism did): the growth is seen."""
     from linkcli.kinematics import solvers
     monkeypatch.setattr(solvers, "KEPT", 10 ** 9)
-    assert _growth() > 2.0
+    assert _growth() > 3.0
 
 
 def test_sweep_vary_is_solved_and_printed_a_block_at_a_time():

@@ -148,7 +148,7 @@ def test_batch_rows_are_solve_for_each_digit(name):
 
 def test_the_batch_round_trip_catches_a_row_of_another_digit(monkeypatch):
     """Planted: each row built for the next digit."""
-    from linkcli.answers import batch
+    from linkcli.runs import batch
     built = batch.build
     monkeypatch.setattr(batch, "build", lambda doc, k: built(doc, (k + 1) % 10))
     assert batch_mismatches("mechanisms/padova-2020-02.yaml", [3, 4])
@@ -189,7 +189,7 @@ def test_a_sweeps_row_at_the_drivers_value_is_solve(name):
 
 def test_the_sweep_round_trip_catches_a_driver_value_off(monkeypatch):
     """Planted: the sweep solves each row at q (1 + 1e-6), printing q."""
-    from linkcli.answers import sweep
+    from linkcli.runs import sweep
     made = sweep.Sweeper.__init__
 
     def shifted(self, *args, **kwargs):

@@ -221,7 +221,7 @@ def _vary_peak(count: int) -> int:
     """The peak of Python's allocations while `sweep --vary` writes ``count`` + 1 rows (a
     crank-slider's crank length: every value assembles)."""
     from linkcli import load
-    from linkcli.answers import vary as vary_mod
+    from linkcli.runs import vary as vary_mod
     mech = load(os.path.join(MECHANISMS, "polimi-crank-slider.yaml")).model
     name, values = vary_mod.parse_vary(f"a=1:1.5:{count}")
     variation = vary_mod.Variation(mech, name, values, ["c", "cdot"])
@@ -258,7 +258,7 @@ def test_the_memory_check_catches_a_cache_that_keeps_every_variant(monkeypatch):
 def test_sweep_vary_is_solved_and_printed_a_block_at_a_time():
     """The first rows come before the last values are solved."""
     from linkcli import load
-    from linkcli.answers.vary import Variation
+    from linkcli.runs.vary import Variation
     mech = load(os.path.join(MECHANISMS, "polimi-crank-slider.yaml")).model
     variation = Variation(mech, "a", np.linspace(1.0, 1.5, 30), ["c"], block=10)
     blocks = variation.blocks()

@@ -5,7 +5,7 @@ import numpy as np
 
 from linkcli.answers.formats import without_noise
 from linkcli.answers.quantities import report_names
-from linkcli.answers.sheet import evaluate
+from linkcli.runs.sheet import evaluate
 from linkcli.errors import InputError, LinkcliError
 from linkcli.input.document import build
 

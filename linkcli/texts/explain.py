@@ -11,8 +11,8 @@ def explain(mech, method: str = "closed") -> str:
     """Grübler's count, then what ``method`` solves: the Assur decomposition in its solving
     order ('closed'), or the constraint equations Newton solves together ('newton'), and
     the statics or dynamics equation."""
-    from linkcli.answers import design
-    from linkcli.answers.sheet import evaluate, refuse_driving
+    from linkcli.runs import design
+    from linkcli.runs.sheet import evaluate, refuse_driving
     refuse_driving(mech, method=method)
     asked, mech = mech, design.resolved(mech, evaluate)     # a design question: its solution's
     solver = solver_for(mech, method)
@@ -60,7 +60,7 @@ def _order_lines(mech, solver) -> list:
         branch = f"  (branch {'+' if group.branch > 0 else '-'} {drawn})" \
             if group.kind in ("RRR", "RRP", "PRR", "RPR") else ""
         lines.append(f"  {step}. {group.describe()}{branch}")
-    from linkcli.answers.validate import figure_cautions
+    from linkcli.kinematics.solvers import figure_cautions
     return lines + [f"  {c}" for c in figure_cautions(mech)]
 
 

@@ -17,8 +17,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.answers.quantities import report_names
-from linkcli.answers.sheet import refuse_driving
-from linkcli.answers.sweep import Block, MAX_POSITIONS, check_names, listing
+from linkcli.runs.sheet import refuse_driving
+from linkcli.runs.sweep import Block, MAX_POSITIONS, check_names, listing
 from linkcli.errors import InputError, LinkcliError
 from linkcli.model.dimensions import param_unit_name
 
@@ -77,7 +77,7 @@ class Gap:
 @dataclass
 class Varied:
     """The answers (display units) at each solved value of the parameter: the fields of a
-    sweep over the driver (answers.sweep.Sweep), ``q`` the parameter's values."""
+    sweep over the driver (runs.sweep.Sweep), ``q`` the parameter's values."""
 
     mechanism: object
     name: str
@@ -143,8 +143,8 @@ class Variation:
     def _solve(self, offset, values) -> Block:
         """The block of ``values``, the first of them the ``offset``-th value: the ones the
         linear system answers all at once (vibration coefficients), the others one by one."""
-        from linkcli.answers.coefficients import sweep as at_once
-        from linkcli.answers.sheet import evaluate
+        from linkcli.runs.coefficients import sweep as at_once
+        from linkcli.runs.sheet import evaluate
         from linkcli.input.document import rebuild
         rows = {n: np.full(values.size, np.nan) for n in self.names}
         solved = np.zeros(values.size, bool)
@@ -201,7 +201,7 @@ def write(variation: Variation, form: str, decimals: int | None, put) -> list:
     """Print ``variation`` through ``put`` as CSV, JSON or a table (the formats of a sweep
     over the driver, the parameter's column first), a block at a time as it is solved;
     returns the reports."""
-    from linkcli.answers.sweep import _write
+    from linkcli.runs.sweep import _write
     _write(variation.blocks(), variation.mech, "closed", variation.names, variation.units,
            variation.unit, lambda: variation.issues, form, 1, decimals, put,
            first=variation.name)

@@ -53,31 +53,32 @@ NUMBERS_OPTION = click.option("--numbers", default=None, metavar="NAMES",
                               "numbers, e.g. --numbers M,L.")
 
 
-def _symbolic_load(file, k, symbolic, numbers, designed=True):
+def _symbolic_load(file, k, symbolic, numbers, designed=True, method="closed", tol=None):
     """(model, formulas' source) of ``file``: the document is read once when the formulas
-    are asked for (standard input cannot be read twice); a design question answered unless
-    ``designed`` is False."""
+    are asked for (standard input cannot be read twice); a design question answered (by
+    ``method``) unless ``designed`` is False."""
     if numbers is not None and not symbolic:
         raise InputError("--numbers goes with --symbolic", key="--numbers",
                          hint="add --symbolic, or drop --numbers")
     if not symbolic:
-        return _load(file, k, designed), None
+        return _load(file, k, designed, method, tol), None
     from linkcli.input.document import build
     from linkcli.input.source import load_file
     doc = load_file(file)
     return build(doc, k), doc
 
 
-def _load(path, k, designed=True):
+def _load(path, k, designed=True, method="closed", tol=None):
     """The validated model of ``path`` for digit ``k``; where the file asks a design question
-    (``find:``), built with its solution unless ``designed`` is False."""
+    (``find:``), built with its solution (each trial solved by ``method``) unless
+    ``designed`` is False."""
     from linkcli.api import load
     model = load(path, k).model
     if designed and model.design is not None:
         from linkcli.runs.design import resolved
         from linkcli.runs.sheet import evaluate
         try:
-            model = resolved(model, evaluate)
+            model = resolved(model, evaluate, method, tol)
         except LinkcliError as exc:
             raise exc.located(path)
     return model
@@ -300,10 +301,10 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions, symboli
         raise InputError("--symbolic writes formulas in the exam, table or json format, not "
                          "csv", key="--format", hint="give --format json for machine-readable "
                          "formulas")
-    mech, doc = _symbolic_load(file, k, symbolic, numbers)
+    tol = _tol(tol)
+    mech, doc = _symbolic_load(file, k, symbolic, numbers, method=method, tol=tol)
     decimals = mech.report.get("decimals", 1) if decimals is None else decimals
     from linkcli.runs.sheet import evaluate
-    tol = _tol(tol)
     result = evaluate(mech, method=method, tol=tol)
     text = render(result, form, decimals, lang)
     if reactions:   # the joint forces at the positions of the same method
@@ -527,7 +528,8 @@ def draw(file, k, output, exam, lang, method):
     _not_an_input(output, file)
     if exam:
         from linkcli.pictures.exam import draw_exam
-        draw_exam(_load(file, k), output, lang=lang, method=method)
+        # the problem as asked: a design question's unknowns are not drawn solved
+        draw_exam(_load(file, k, designed=False), output, lang=lang, method=method)
         return
     from linkcli.pictures.plotting import draw as make
     make(_load(file, k), output, method=method)
@@ -704,7 +706,7 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
         if start is None or stop is None:
             raise InputError("give --from and --to (the driver's range), or --vary "
                              "NAME=FROM:TO:STEPS (a parameter's)", key="--from")
-        mech = _load(file, k)
+        mech = _load(file, k, method=method, tol=_tol(tol))
         q = sweep_mod.driver_range(start, stop, steps, step)
         from linkcli.runs.limits import sweep_names
         chosen = sweep_names(mech, chosen)      # maxima, strokes ... are not functions of q

@@ -27,7 +27,8 @@ def explain(mech, method: str = "closed") -> str:
                 [f"  higher pairs H = {count.h}: " + ", ".join(
                     f"{n} ({mech.rolling[n].disc}, {'cord' if mech.rolling[n].kind in ('cord', 'belt') else 'rolling'})"
                     for n in count.higher)] if count.h else []) + [f"  {count.formula()}", ""]
-    lines += _newton_lines(mech, solver) if method == "newton" else _order_lines(mech, solver)
+    lines += _newton_lines(mech, solver) if method == "newton" else \
+        _order_lines(mech, solver, asked)
     if any(b.kind == "block" and _turns(mech, b.guide.carrier) for b in mech.bodies.values()):
         lines.append("  (sliders on turning guides add Coriolis terms to the accelerations)")
     if mech.elements is not None:
@@ -41,8 +42,9 @@ def explain(mech, method: str = "closed") -> str:
     return "\n".join(lines + design.explain_lines(asked, evaluate))
 
 
-def _order_lines(mech, solver) -> list:
-    """The closed form's decomposition and solving order, with the figure's cautions."""
+def _order_lines(mech, solver, asked) -> list:
+    """The closed form's decomposition and solving order, with the cautions of the figure
+    (of ``asked``: the file's values, before a design question is solved)."""
     lines = ["Decomposition and solving order"]
     if len(mech.coordinates) > 1 or mech.elements is not None:
         for c in mech.coordinates:
@@ -61,7 +63,7 @@ def _order_lines(mech, solver) -> list:
             if group.kind in ("RRR", "RRP", "PRR", "RPR") else ""
         lines.append(f"  {step}. {group.describe()}{branch}")
     from linkcli.kinematics.solvers import figure_cautions
-    return lines + [f"  {c}" for c in figure_cautions(mech)]
+    return lines + [f"  {c}" for c in figure_cautions(asked)]
 
 
 def _newton_lines(mech, solver) -> list:

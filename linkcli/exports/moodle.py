@@ -55,7 +55,7 @@ import numpy as np
 
 from linkcli.runs import design
 from linkcli.runs.design import asked
-from linkcli.answers.formats import fmt
+from linkcli.answers.formats import fmt, without_noise
 from linkcli.answers.formats import heading as section_heading
 from linkcli.answers.quantities import angle_period, report_names
 from linkcli.runs.sheet import evaluate
@@ -311,11 +311,12 @@ def _asked(mech, section) -> list:
 
 
 def _solved(mech, method):
-    """(the answers of ``mech`` by ``method``, its design question's solution or None)."""
+    """(the answers of ``mech`` by ``method``, a zero's rounding noise 0 as solve prints
+    it; its design question's solution or None)."""
     try:
         result = evaluate(mech) if method == "closed" else evaluate(mech, method=method)
-        return result, (design.solve(mech, evaluate, method) if design.unsolved(mech)
-                        else None)
+        return without_noise(result), (design.solve(mech, evaluate, method)
+                                       if design.unsolved(mech) else None)
     except LinkcliError as exc:
         cls = SolveError if isinstance(exc, SolveError) else InputError
         raise cls(_digit(mech) + exc.detail, file=exc.file, key=exc.key, line=exc.line,

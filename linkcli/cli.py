@@ -215,10 +215,15 @@ def _same_file(output, path) -> bool:
 
 
 def _not_an_input(output, *inputs):
-    """Refuse ``-o`` naming one of the input files (also through a link, and standard input
-    read from that file): it would be overwritten before, or instead of, being read."""
+    """Refuse ``-o`` naming a folder (no file can be written there, ``--force`` or not), or
+    one of the input files (also through a link, and standard input read from that file):
+    it would be overwritten before, or instead of, being read."""
     if output is None:
         return
+    if os.path.isdir(output):
+        raise InputError("the output path is a folder", file=output, key="-o",
+                         hint="give the name of a file to write, such as "
+                         f"{os.path.join(output, 'NAME')}")
     for path in inputs:
         if path is None:
             continue
@@ -319,23 +324,32 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions, symboli
 @click.option("--pseudocode", is_flag=True,
               help="Print the solving order as pseudo-MATLAB calls of the dyad functions.")
 @click.option("-o", "--output", default=None, help="Write to this file instead of stdout.")
+@click.option("--method", type=click.Choice(["closed", "newton"]), default="closed",
+              show_default=True, help="What is explained: the closed form's decomposition, "
+              "or the constraint equations Newton-Raphson solves together.")
 @SYMBOLIC_OPTION
 @NUMBERS_OPTION
-def explain(file, k, pseudocode, output, symbolic, numbers):
+def explain(file, k, pseudocode, output, method, symbolic, numbers):
     """Print Grübler's count, the Assur decomposition and the solving order.
 
     \b
     Examples:
       linkcli explain mechanisms/padova-2020-07.yaml
       linkcli explain mechanisms/padova-2020-07.yaml --pseudocode
+      linkcli explain mechanisms/triad-class3.yaml --method newton
     """
-    if pseudocode:
-        from linkcli.texts.pseudocode import pseudocode as text
-    else:
-        from linkcli.texts.explain import explain as text
+    if pseudocode and method != "closed":
+        raise InputError("--pseudocode writes the closed form's calls of the dyad functions",
+                         key="--method", hint="drop --method newton for --pseudocode (a "
+                         "class-III group is written as one call solved numerically)")
     _not_an_input(output, file)
     mech, doc = _symbolic_load(file, k, symbolic, numbers, designed=pseudocode)
-    out = text(mech)
+    if pseudocode:
+        from linkcli.texts.pseudocode import pseudocode as text
+        out = text(mech)
+    else:
+        from linkcli.texts.explain import explain as text
+        out = text(mech, method)
     if doc is not None:
         from linkcli.texts.symbolic import append
         out = append(out, "exam", doc, k, numbers)
@@ -498,7 +512,8 @@ def plot(file, sweep, frf, modes, free, vary, names, k, output):
 @click.option("--lang", type=click.Choice(["it", "en"]), default="en", show_default=True,
               help="Numbers of --exam with a decimal comma (it) or point (en).")
 @click.option("--method", type=click.Choice(["closed", "newton"]), default="closed",
-              show_default=True, help="How positions are solved (--exam).")
+              show_default=True, help="How positions (and loads) are solved: newton for a "
+              "class-III group.")
 def draw(file, k, output, exam, lang, method):
     """Draw FILE at its driver value: links, sliders, pivots, the vector polygon z_i, loads.
 
@@ -517,7 +532,7 @@ def draw(file, k, output, exam, lang, method):
         draw_exam(_load(file, k, designed=False), output, lang=lang, method=method)
         return
     from linkcli.pictures.plotting import draw as make
-    make(_load(file, k), output)
+    make(_load(file, k), output, method=method)
 
 
 @cli.command()
@@ -595,6 +610,7 @@ def schema(output):
       linkcli schema
     """
     from importlib.resources import files
+    _not_an_input(output)
     _emit(files("linkcli.input").joinpath("schema.json").read_text(encoding="utf-8").rstrip("\n"),
           output)
 
@@ -684,8 +700,8 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
         name, values = vary_mod.parse_vary(vary)
         mech = _load(file, k, designed=False)     # a design question: solved at each value
         sweep_mod.check_every(every)
-        varied = vary_mod.vary(mech, name, values, chosen, method=method, tol=_tol(tol))
-        writer = (lambda put: vary_mod.write(varied, form, decimals, put))
+        variation = vary_mod.Variation(mech, name, values, chosen, method=method, tol=_tol(tol))
+        writer = (lambda put: vary_mod.write(variation, form, decimals, put))
     else:
         if start is None or stop is None:
             raise InputError("give --from and --to (the driver's range), or --vary "

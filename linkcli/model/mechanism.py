@@ -238,7 +238,7 @@ class Quantity:
         return self.kind in ("angle", "rotation", "between")
 
 
-#: quantity kinds of the limits of the motion (answers.limits): one value for a range of the
+#: quantity kinds of the limits of the motion (runs.limits): one value for a range of the
 #: driver, of the quantity named ``a`` (a name or a rate's name, e.g. xB or xBdot); ``component``
 #: is 'working' or 'return' for a stroke time, ``span`` the range (None: the default one)
 LIMITS = ("maximum", "minimum", "at_maximum", "at_minimum", "stroke", "time_ratio",
@@ -341,6 +341,14 @@ class Mechanism:
     @property
     def points(self) -> list:
         return [p for p in self.fixed if not p.startswith("~")] + list(self.moving)
+
+    @property
+    def figure_points(self) -> list:
+        """The figure's positions of the named points (m): not the virtual ones (a fixed
+        guide's second point, drawn at least 1 m away to give its direction, is no part of
+        the mechanism's size)."""
+        figure = {**self.fixed, **self.moving}
+        return [figure[p] for p in self.points]
 
     def unknown_load(self) -> Load:
         load = next((load for load in self.loads.values() if load.value is None), None)

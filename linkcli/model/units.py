@@ -154,8 +154,10 @@ class Units:
                 return self.names["angle"], self.factor("angle")
             if order == 1:
                 return self.names["angular_rate"], self.factor("angular_rate")
-            name = self.names["angle"] if self.names["angular_rate"] == "rpm" else self.names["angular_rate"][:-2]
-            return f"{name}/s^2", ANGLE[name]
+            rate = self.names["angular_rate"]
+            if rate in ("rpm", "rev/s"):     # turns per time: the angle unit per s^2
+                return f"{self.names['angle']}/s^2", self.factor("angle")
+            return f"{rate[:-2]}/s^2", self.factor("angular_rate")     # deg/s^2, rad/s^2
         unit = self.names["length"]
         factor = self.factor("length")
         suffix = ["", "/s", "/s^2"][order]

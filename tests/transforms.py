@@ -724,9 +724,19 @@ class Rename:
         self.links = {n: link_prefix + n for n in (data.get("links") or {})
                       if isinstance(n, str)}
         self.unknown: list = []
-        taken = set(data.get("params") or {}) | set(data.get("quantities") or {}) \
-            | set(data.get("loads") or {})
-        clash = taken & (set(self.points.values()) | set(self.links.values()))
+        self.check()
+
+    def check(self):
+        """Refuse new names that a parameter, a quantity, a load or another section's entry
+        already has (with a point's derived names ``xP``, ``yP``)."""
+        taken = set()
+        for section in ("params", "quantities", "loads", "sliders", "actuators", "springs",
+                        "dampers", "rolling", "cords", "coordinates"):
+            if isinstance(self.data.get(section), dict):
+                taken |= set(self.data[section])
+        new = set(self.points.values()) | set(self.links.values())
+        new |= {a + p for p in self.points.values() for a in "xy"}
+        clash = taken & new
         if clash:
             raise ValueError(f"renaming clashes with {sorted(clash)}")
 
@@ -938,15 +948,18 @@ class Rename:
             spec["friction_circles"] = self.keys_of(spec["friction_circles"], P)
 
 
-def rename_links(data: dict, rng: random.Random) -> dict:
-    """Link names -> ``b0``, ``b1`` ... assigned in a random order (a link's name carries no
-    convention), with the points prefixed as :class:`Rename` does."""
-    names = [n for n in (data.get("links") or {}) if isinstance(n, str)]
-    numbers = list(range(len(names)))
-    rng.shuffle(numbers)
+def shuffle_names(data: dict, rng: random.Random) -> Rename:
+    """A renaming of every point to ``N0``, ``N1`` ... and every link to ``b0``, ``b1`` ...,
+    the numbers assigned in a random order: the alphabetical order of the points changes,
+    which only the figure's vector labels (z_i) follow, never an answer."""
     renamer = Rename(data)
-    renamer.links = {n: f"b{i}" for n, i in zip(names, numbers)}
-    return renamer.run()
+    for table, prefix in ((renamer.points, "N"), (renamer.links, "b")):
+        numbers = list(range(len(table)))
+        rng.shuffle(numbers)
+        for name, i in zip(list(table), numbers):
+            table[name] = f"{prefix}{i}"
+    renamer.check()
+    return renamer
 
 
 # --- solving and comparing ----------------------------------------------------------------
@@ -985,6 +998,8 @@ def solve(text: str, k=None, name="<text>") -> Outcome:
             result = linkage.solve(method="newton")
     except linkcli.LinkcliError as exc:
         return Outcome(error=(exc.exit_code, type(exc).__name__))
+    except Exception as exc:        # noqa: BLE001 - an internal error is an outcome too
+        return Outcome(error=(70, type(exc).__name__))
     values = {n: float(v) for n, v in result.values.items()}
     points = {n: tuple(float(c) for c in xy) for n, xy in (result.points or {}).items()}
     return Outcome(values, dict(result.units), points)

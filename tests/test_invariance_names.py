@@ -52,30 +52,31 @@ def _seed(path: str, salt: int = 0) -> int:
 
 
 def rewrite(path: str, variant: str, seed: int):
-    """(the rewritten data, the renaming of answer names) of ``path``."""
+    """(the rewritten data, its renamer or None) of ``path``."""
     data = data_of(path)
     if variant == "reverse":
-        return T.reverse(data), lambda n: n
+        return T.reverse(data), None
     if variant == "permute":
-        return T.permute(data, random.Random(seed)), lambda n: n
+        return T.permute(data, random.Random(seed)), None
     if variant == "prefix":
         renamer = T.Rename(data)
-        return renamer.run(), renamer.answer
+        return renamer.run(), renamer
     rng = random.Random(seed)
     renamer = T.shuffle_names(data, rng)
-    return T.permute(renamer.run(), rng), renamer.answer
+    return T.permute(renamer.run(), rng), renamer
 
 
 def check(path: str, variant: str, seed: int) -> list:
     """The differences between ``path`` and its rewriting, for every digit it is solved for."""
-    new, rename = rewrite(path, variant, seed)
+    new, renamer = rewrite(path, variant, seed)
+    names = {} if renamer is None else {"rename": renamer.answer, "point": renamer.point}
     out = []
     for k in T.digits(data_of(path)):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
             outcome = T.solve(T.to_yaml(new), k, path)
         out += [f"k={k}: {d}" for d in T.differences(baseline(path, k), outcome,
-                                                      T.own_units(data_of(path)), rename)]
+                                                      T.own_units(data_of(path)), **names)]
     return out
 
 

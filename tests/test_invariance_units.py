@@ -118,7 +118,9 @@ def check(path: str, system: dict) -> list:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
             outcome = T.solve(T.to_yaml(new), k, path)
-        out += [f"k={k}: {d}" for d in T.differences(base, outcome, T.own_units(data))]
+        lengths = (rewrite.old.factor("length"), rewrite.new.factor("length"))
+        out += [f"k={k}: {d}" for d in T.differences(base, outcome, T.own_units(data),
+                                                      lengths=lengths)]
     return out
 
 

@@ -605,6 +605,8 @@ class UnitRewrite:
     def value(self, value, kind):
         """``value`` (a number or an expression) of ``kind`` in the new units."""
         c = _num(ratio(self.old, self.new, kind))
+        if _literal(value):             # a number YAML reads as text (1e-300)
+            value = float(value)
         if isinstance(value, (int, float)) and not isinstance(value, bool):
             return value * c if c != 1.0 else value
         text = substitute(value, self.back) if self.back else str(value)
@@ -614,9 +616,8 @@ class UnitRewrite:
         out = copy.deepcopy(self.data)
         out["units"] = dict(self.new.declared)
         for path, kind in self.sites.kinds.items():
-            value = _get(self.data, path)
-            if isinstance(value, (int, float)) and value and not \
-                    1e-300 <= abs(value * ratio(self.old, self.new, kind)) <= 1e300:
+            value = _literal(_get(self.data, path))
+            if value and not 1e-300 <= abs(value * ratio(self.old, self.new, kind)) <= 1e300:
                 self.unknown.append(path + ("out of range in the new units",))
         for path, kind in self.sites.kinds.items():
             _set(out, path, self.value(_get(self.data, path), kind))
@@ -628,6 +629,12 @@ class UnitRewrite:
             out["params"][name] = self.value(value, self.kinds.get(name))
         if "find" in self.data:
             out["find"] = self.find(self.data["find"])
+            for name, item in ((out["find"] or {}).get("unknowns") or {}).items():
+                ends = item.get("between") if isinstance(item, dict) else None
+                if any(_literal(e) and not 1e-300 <= abs(_literal(e)) <= 1e300
+                       for e in ends or []):
+                    self.unknown.append(("find", "unknowns", name,
+                                         "out of range in the new units"))
         return out
 
     def find(self, spec):
@@ -674,7 +681,17 @@ def target_unit(data: dict, name: str):
         return None
 
 
+def _literal(value) -> float:
+    """The number a value writes (YAML reads 1e-300 as text), 0 for an expression."""
+    try:
+        return float(value) if not isinstance(value, bool) else 0.0
+    except (TypeError, ValueError):
+        return 0.0
+
+
 def _scale(value, c):
+    if _literal(value):
+        value = float(value)
     if isinstance(value, (int, float)) and not isinstance(value, bool):
         return value * c
     return f"({value})*{c!r}"
@@ -953,13 +970,21 @@ def shuffle_names(data: dict, rng: random.Random) -> Rename:
     the numbers assigned in a random order: the alphabetical order of the points changes,
     which only the figure's vector labels (z_i) follow, never an answer."""
     renamer = Rename(data)
-    for table, prefix in ((renamer.points, "N"), (renamer.links, "b")):
+    orders = []
+    for table in (renamer.points, renamer.links):
         numbers = list(range(len(table)))
         rng.shuffle(numbers)
-        for name, i in zip(list(table), numbers):
-            table[name] = f"{prefix}{i}"
-    renamer.check()
-    return renamer
+        orders.append(numbers)
+    for prefixes in (("N", "b"), ("Nq", "bq"), ("Nz_", "bz_")):    # the first free ones
+        for table, prefix, numbers in zip((renamer.points, renamer.links), prefixes, orders):
+            for name, i in zip(list(table), numbers):
+                table[name] = f"{prefix}{i}"
+        try:
+            renamer.check()
+            return renamer
+        except ValueError:
+            continue
+    raise ValueError("no free names")
 
 
 # --- solving and comparing ----------------------------------------------------------------
@@ -1015,14 +1040,16 @@ def _si(value, unit, dim=None):
     return value * f, d
 
 
-def differences(a: Outcome, b: Outcome, own_units=(), rename=lambda n: n, rtol=1e-9) -> list:
+def differences(a: Outcome, b: Outcome, own_units=(), rename=lambda n: n, rtol=1e-9,
+                lengths=(1.0, 1.0), point=lambda n: n) -> list:
     """What differs between the answers ``a`` and ``b`` (``b``'s names are ``rename`` of
-    ``a``'s): each in SI, angles modulo a turn; names in ``own_units`` (a quantity's own
-    ``unit:``) also in their display unit."""
+    ``a``'s, its points ``point`` of ``a``'s): each in SI, angles modulo a turn; names in
+    ``own_units`` (a quantity's own ``unit:``) also in their display unit; the report's points
+    in SI by the files' length units ``lengths`` (m per unit)."""
     if a.error or b.error:
         return [] if a.error == b.error else [f"outcome {a.error or 'solved'} != "
                                               f"{b.error or 'solved'}"]
-    out = []
+    out = _points(a, b, lengths, point, rtol)
     if {rename(n) for n in a.values} != set(b.values):
         out.append(f"names {sorted(a.values)} != {sorted(b.values)}")
         return out
@@ -1053,6 +1080,19 @@ def differences(a: Outcome, b: Outcome, own_units=(), rename=lambda n: n, rtol=1
         if not _close(va, vb, rtol, atol, angle):
             out.append(f"{name}: {value!r} {a.units[name]} = {va!r} SI != {other!r} {unit} = "
                        f"{vb!r} SI")
+    return out
+
+
+def _points(a, b, lengths, point, rtol) -> list:
+    """The report's points of ``a`` and ``b`` in SI."""
+    if {point(n) for n in a.points} != set(b.points):
+        return [f"points {sorted(a.points)} != {sorted(b.points)}"]
+    size = max((abs(c) * lengths[0] for xy in a.points.values() for c in xy), default=1.0)
+    out = []
+    for name, xy in a.points.items():
+        for axis, u, v in zip("xy", xy, b.points[point(name)]):
+            if not _close(u * lengths[0], v * lengths[1], rtol, 1e-9 * size, False):
+                out.append(f"point {name}: {axis} {u!r} != {v!r} (file units)")
     return out
 
 

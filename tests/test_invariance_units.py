@@ -266,3 +266,37 @@ report: {velocity: [phidot, xBdot], acceleration: [phiddot]}
     assert result.units["phiddot"] == "deg/s^2"
     assert result.values["phiddot"] == pytest.approx(2)
     assert result.values["xBdot"] == pytest.approx(-100 * math.pi * 0.5)
+
+
+def test_parameter_units_are_those_of_the_format():
+    """Every unit linkcli gives a parameter is the one the format gives it: the kind of the
+    values it is written as on its own (tests/transforms.py).  An initial velocity of a
+    length coordinate made its parameter a length (so ``{expr: v0, unit: m/s}`` was refused
+    as a length, and ``unit: mm`` showed 500 mm for 500 mm/s)."""
+    import linkcli
+    for path in REWRITTEN:
+        data = data_of(path)
+        try:
+            mech = linkcli.load(os.path.join(ROOT, path)).model
+        except linkcli.LinkcliError:
+            continue
+        format_kinds = T.param_kinds(data, T.Sites(data))
+        for name, kind in mech.param_kinds.items():
+            assert format_kinds.get(name) == kind, (path, name, kind)
+    text = """
+units: {length: mm, stiffness: N/m}
+params: {m: 2, ks: 200, v0: 500}
+frame: {A: [0, 0]}
+points: {P: [100, 0]}
+sliders: {block: {point: P, guide: {y: 0}}}
+coordinates: {x: {x: P}}
+springs: {s: {between: [A, P], k: ks}}
+dynamics: {masses: {P: m}}
+initial: {x: 0, x_dot: v0}
+quantities: {X: {largest: x}}
+report: {vibration: [X]}
+"""
+    linkage = linkcli.loads(text)
+    assert "v0" not in linkage.model.param_kinds
+    # released at 0.5 m/s from equilibrium, w = sqrt(200/2) = 10 rad/s: X = v0/w = 50 mm
+    assert linkage.solve().values["X"] == pytest.approx(50.0)

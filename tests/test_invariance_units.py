@@ -300,3 +300,31 @@ report: {vibration: [X]}
     assert "v0" not in linkage.model.param_kinds
     # released at 0.5 m/s from equilibrium, w = sqrt(200/2) = 10 rad/s: X = v0/w = 50 mm
     assert linkage.solve().values["X"] == pytest.approx(50.0)
+
+
+@pytest.mark.parametrize("path, name", [
+    ("mechanisms/polimi-2001-07-04-vibration.yaml", "ka"),       # a coefficient: at once
+    ("mechanisms/vib-cdquestions-spring-mass.yaml", "ks"),       # ... with an expression
+    ("mechanisms/polimi-2001-09-18-vibration.yaml", "L"),        # a length: rebuilt
+    ("mechanisms/padova-2020-02.yaml", "Fx"),                    # a load of a linkage
+    ("docs/examples/design-spring.yaml", "m"),                   # a design at each value
+])
+def test_a_parameter_varied_in_other_units(path, name, invariance_counter):
+    """``Linkage.vary`` over a parameter's values as the file writes them: the rewritten
+    file, given the same values in the parameter's new unit, answers the same in SI."""
+    import linkcli
+    import numpy as np
+    data = data_of(path)
+    rewrite = T.UnitRewrite(data, SYSTEMS["us"], baseline(path, data.get("k")).units)
+    new = rewrite.run()
+    old_linkage = linkcli.load(os.path.join(ROOT, path))
+    new_linkage = linkcli.loads(T.to_yaml(new), None, path)
+    values = float(old_linkage.model.params[name]) * np.array([0.9, 1.0, 1.2])
+    a = old_linkage.vary(name, values)
+    b = new_linkage.vary(name, values * T.ratio(rewrite.old, rewrite.new, rewrite.kinds.get(name)))
+    assert a.solved.all() and b.solved.all()
+    for i in range(len(values)):
+        row = [T.Outcome({n: float(v[i]) for n, v in r.values.items()}, dict(r.units))
+               for r in (a, b)]
+        assert T.differences(*row, T.own_units(data)) == [], (path, name, values[i])
+    invariance_counter["units: varied parameters"] += len(values)

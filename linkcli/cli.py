@@ -74,8 +74,8 @@ def _load(path, k, designed=True):
     from linkcli.api import load
     model = load(path, k).model
     if designed and model.design is not None:
-        from linkcli.answers.design import resolved
-        from linkcli.answers.sheet import evaluate
+        from linkcli.runs.design import resolved
+        from linkcli.runs.sheet import evaluate
         try:
             model = resolved(model, evaluate)
         except LinkcliError as exc:
@@ -297,7 +297,7 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions, symboli
                          "formulas")
     mech, doc = _symbolic_load(file, k, symbolic, numbers)
     decimals = mech.report.get("decimals", 1) if decimals is None else decimals
-    from linkcli.answers.sheet import evaluate
+    from linkcli.runs.sheet import evaluate
     tol = _tol(tol)
     result = evaluate(mech, method=method, tol=tol)
     text = render(result, form, decimals, lang)
@@ -305,7 +305,7 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions, symboli
         from linkcli.answers.reaction_table import append_report
         text = append_report(text, mech, form, decimals, method=method, tol=tol)
     if doc is not None:
-        from linkcli.answers.symbolic import append
+        from linkcli.texts.symbolic import append
         text = append(text, form, doc, k, numbers, lang)
     _emit(text, output)
     for caution in result.cautions:       # after the answers: what the reader should check
@@ -329,14 +329,14 @@ def explain(file, k, pseudocode, output, symbolic, numbers):
       linkcli explain mechanisms/padova-2020-07.yaml --pseudocode
     """
     if pseudocode:
-        from linkcli.answers.pseudocode import pseudocode as text
+        from linkcli.texts.pseudocode import pseudocode as text
     else:
-        from linkcli.answers.explain import explain as text
+        from linkcli.texts.explain import explain as text
     _not_an_input(output, file)
     mech, doc = _symbolic_load(file, k, symbolic, numbers, designed=pseudocode)
     out = text(mech)
     if doc is not None:
-        from linkcli.answers.symbolic import append
+        from linkcli.texts.symbolic import append
         out = append(out, "exam", doc, k, numbers)
     _emit(out, output)
 
@@ -358,7 +358,7 @@ def batch(file, ks, form, decimals, output):
       linkcli batch mechanisms/padova-2020-02.yaml --k 0-9
       linkcli batch mechanisms/padova-2020-01.yaml --k 1,3,5 --format csv
     """
-    from linkcli.answers import batch as batch_mod
+    from linkcli.runs import batch as batch_mod
     from linkcli.input.source import load_file
     from linkcli.answers.formats import fmt
     digits = batch_mod.parse_k(ks)
@@ -411,7 +411,7 @@ def check(paths, verbose, form):
       linkcli check mechanisms/
       linkcli check mechanisms/ --format json > check.json
     """
-    from linkcli.answers.check import as_dict, check_file, collect, summary_lines
+    from linkcli.runs.check import as_dict, check_file, collect, summary_lines
     files = collect(paths or ["mechanisms"])
     if not files:
         raise InputError("no mechanism files found", key="PATHS",
@@ -476,7 +476,7 @@ def plot(file, sweep, frf, modes, free, vary, names, k, output):
         plot_vary(mech, vary, list(names), output)
         return
     if sweep:
-        from linkcli.answers.limits import sweep_names
+        from linkcli.runs.limits import sweep_names
         from linkcli.pictures.plotting import plot as make
         make(mech, sweep, sweep_names(mech, list(names), key="--y"), output)
         return
@@ -558,7 +558,7 @@ def validate(files, k):
       linkcli validate mechanisms/*.yaml
       linkcli validate - < my-exam.yaml
     """
-    from linkcli.answers.validate import validate_file
+    from linkcli.runs.validate import validate_file
     worst = 0
     for path in files:
         outcome = validate_file(path, k)
@@ -668,7 +668,7 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
       linkcli sweep mechanisms/padova-2020-07.yaml --from 100 --to 160 --step 5 --format table
       linkcli sweep mechanisms/polimi-2001-09-18-vibration.yaml --vary ks=50:150:10
     """
-    from linkcli.answers import sweep as sweep_mod
+    from linkcli.runs import sweep as sweep_mod
     _not_an_input(output, file)
     chosen = [n.strip() for n in names.split(",") if n.strip()] if names else None
     if vary is not None:
@@ -678,7 +678,7 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
             raise InputError(f"--vary takes the place of {', '.join(given)}", key="--vary",
                              hint="vary either the driver (--from, --to, --steps) or a "
                              "parameter (--vary NAME=FROM:TO:STEPS)")
-        from linkcli.answers import vary as vary_mod
+        from linkcli.runs import vary as vary_mod
         name, values = vary_mod.parse_vary(vary)
         mech = _load(file, k, designed=False)     # a design question: solved at each value
         sweep_mod.check_every(every)
@@ -690,7 +690,7 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
                              "NAME=FROM:TO:STEPS (a parameter's)", key="--from")
         mech = _load(file, k)
         q = sweep_mod.driver_range(start, stop, steps, step)
-        from linkcli.answers.limits import sweep_names
+        from linkcli.runs.limits import sweep_names
         chosen = sweep_names(mech, chosen)      # maxima, strokes ... are not functions of q
         sweep_mod.check_every(every)
         sweeper = sweep_mod.Sweeper(mech, q, chosen, method=method, tol=_tol(tol))
@@ -744,7 +744,7 @@ def limits(file, names, start, stop, form, decimals, k, output):
       linkcli limits mechanisms/polimi-crank-slider.yaml --of c --of cdot
       linkcli limits mechanisms/khurmi-15-3-max-piston-velocity.yaml --of vP --from 0 --to 180
     """
-    from linkcli.answers import limits as limits_mod
+    from linkcli.runs import limits as limits_mod
     _not_an_input(output, file)
     mech = _load(file, k)
     decimals = mech.report.get("decimals", 1) if decimals is None else decimals
@@ -894,7 +894,7 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, method, o
       linkcli export mechanisms/padova-2020-07.yaml --to html --lang it -o solution.html
     """
     import os
-    from linkcli.answers.batch import parse_k
+    from linkcli.runs.batch import parse_k
     from linkcli.input.source import load_file
     _not_an_input(output, file)             # --force replaces an output, never the input
     if os.path.exists(output) and not force:
@@ -923,7 +923,7 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, method, o
         k = ks[0] if ks else None
         formulas = None
         if symbolic:
-            from linkcli.answers.symbolic import formulas as symbolic_formulas, parse_numbers
+            from linkcli.texts.symbolic import formulas as symbolic_formulas, parse_numbers
             formulas = symbolic_formulas(doc, k, parse_numbers(numbers))
         text = document(doc, k, target, lang, figure=not no_figure, formulas=formulas)
     _emit(text.rstrip("\n"), output)

@@ -24,7 +24,7 @@ sys.path.insert(0, os.path.dirname(__file__))
 
 from quizzes import METHOD, SHIPPED, Parts, boxes, digit, html_of, questions, shipped  # noqa: E402
 from linkcli.answers.quantities import report_names  # noqa: E402
-from linkcli.answers.sheet import evaluate  # noqa: E402
+from linkcli.runs.sheet import evaluate  # noqa: E402
 from linkcli.input import expressions  # noqa: E402
 from linkcli.input.document import build  # noqa: E402
 from linkcli.input.source import Document, load_file  # noqa: E402

@@ -2,7 +2,7 @@
 
 Each question states the problem with that digit's data: the title, the file's
 ``statement`` (added to, not instead of, the data), every datum of the model in words
-(:mod:`linkcli.answers.statement`), the exam's figure (:mod:`linkcli.pictures.exam`:
+(:mod:`linkcli.texts.statement`), the exam's figure (:mod:`linkcli.pictures.exam`:
 the data drawn, no answer), how to write the answers, and one NUMERICAL box per
 reported quantity, in the order and sections of the exam's table::
 
@@ -56,8 +56,8 @@ import numpy as np
 from linkcli.answers.formats import fmt
 from linkcli.answers.formats import heading as section_heading
 from linkcli.answers.quantities import angle_period, report_names
-from linkcli.answers.sheet import evaluate
-from linkcli.answers.statement import data_lines, describe, number
+from linkcli.runs.sheet import evaluate
+from linkcli.texts.statement import data_lines, describe, number
 from linkcli.errors import InputError, LinkcliError, SolveError
 from linkcli.exports.text import refuse_unfit, visible
 from linkcli.input.document import build

@@ -64,3 +64,14 @@ def state(mech, q=None, method="closed", tol=None):
     solver.accelerations(kin, d.accel)
     unit = solver.velocities(kin.at_rest(), np.ones_like(kin.q))
     return kin, unit
+
+
+def figure_cautions(mech) -> list:
+    """What the figure check found: the figure far from the solved position, an ambiguous or
+    forced branch, a figure that cannot be assembled (the branch is then undetermined)."""
+    from linkcli.errors import Caution
+    solver = solver_for(mech)
+    out = list(solver.cautions)
+    if solver.undetermined:
+        out.insert(0, Caution("unassembled", solver.undetermined, mech.file))
+    return out

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.answers.quantities import report_names
-from linkcli.answers.sweep import Block, MAX_POSITIONS, check_names, listing
+from linkcli.runs.sweep import Block, MAX_POSITIONS, check_names, listing
 from linkcli.errors import InputError, LinkcliError
 from linkcli.model.dimensions import param_unit_name
 
@@ -73,7 +73,7 @@ class Gap:
 @dataclass
 class Varied:
     """The answers (display units) at each solved value of the parameter: the fields of a
-    sweep over the driver (answers.sweep.Sweep), ``q`` the parameter's values."""
+    sweep over the driver (runs.sweep.Sweep), ``q`` the parameter's values."""
 
     mechanism: object
     name: str
@@ -107,7 +107,7 @@ def vary(mech, name, values, names=None, key="--vary", method="closed", tol=None
     ``name`` (by ``method`` for a file with a driver); raises the error of the first value
     when no value has answers."""
     from linkcli.input.document import rebuild
-    from linkcli.answers.sheet import evaluate
+    from linkcli.runs.sheet import evaluate
     check_parameter(mech, name, key)
     names = check_names(mech, names or None, "--names") if names else report_names(mech)
     values = np.asarray(values, dtype=float)
@@ -118,7 +118,7 @@ def vary(mech, name, values, names=None, key="--vary", method="closed", tol=None
                  unit=param_unit_name(mech, name))
     rows = {n: np.full(values.size, np.nan) for n in names}
     first_error = None
-    from linkcli.answers.coefficients import sweep as at_once
+    from linkcli.runs.coefficients import sweep as at_once
     fast = at_once(mech, name, values, names, evaluate) if method == "closed" else None
     if fast is not None:        # the values the linear system answers, all at once
         answers, done, units = fast
@@ -160,7 +160,7 @@ def _gap(out: Varied, i, value, exc) -> None:
 
 
 def blocks(varied: Varied):
-    """The varied answers as the one block of a sweep (answers.sweep.Block), the parameter's
+    """The varied answers as the one block of a sweep (runs.sweep.Block), the parameter's
     values in the place of the driver's."""
     yield Block(varied.q, varied.solved, varied.values)
 
@@ -168,7 +168,7 @@ def blocks(varied: Varied):
 def write(varied: Varied, form: str, decimals: int | None, put) -> list:
     """Print ``varied`` through ``put`` as CSV, JSON or a table (the formats of a sweep over
     the driver, the parameter's column first); returns the reports."""
-    from linkcli.answers.sweep import _write
+    from linkcli.runs.sweep import _write
     label = f"{varied.name}"
     _write(blocks(varied), varied.mechanism, "closed", varied.names, varied.units,
            varied.unit, lambda: varied.issues, form, 1, decimals, put, first=label)

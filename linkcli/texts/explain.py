@@ -6,8 +6,8 @@ from linkcli.model.mechanism import FRAME
 
 
 def explain(mech) -> str:
-    from linkcli.answers import design
-    from linkcli.answers.sheet import evaluate
+    from linkcli.runs import design
+    from linkcli.runs.sheet import evaluate
     asked, mech = mech, design.resolved(mech, evaluate)     # a design question: its solution's
     solver = solver_for(mech)
     count = solver.topology.grubler
@@ -38,7 +38,7 @@ def explain(mech) -> str:
         branch = f"  (branch {'+' if group.branch > 0 else '-'} {drawn})" \
             if group.kind in ("RRR", "RRP", "PRR", "RPR") else ""
         lines.append(f"  {step}. {group.describe()}{branch}")
-    from linkcli.answers.validate import figure_cautions
+    from linkcli.kinematics.solvers import figure_cautions
     lines += [f"  {c}" for c in figure_cautions(mech)]
     if any(b.kind == "block" and _turns(mech, b.guide.carrier) for b in mech.bodies.values()):
         lines.append("  (sliders on turning guides add Coriolis terms to the accelerations)")

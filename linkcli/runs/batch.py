@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from linkcli.answers.quantities import report_names
-from linkcli.answers.sheet import evaluate
+from linkcli.runs.sheet import evaluate
 from linkcli.errors import InputError, LinkcliError
 from linkcli.input.document import build
 

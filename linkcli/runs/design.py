@@ -64,7 +64,7 @@ def unsolved(mech) -> bool:
 
 def resolved(mech, evaluate):
     """``mech`` itself, or, where it asks a design question, the mechanism built with the
-    unknowns' solution (solved once per mechanism; ``evaluate`` is answers.sheet's, which
+    unknowns' solution (solved once per mechanism; ``evaluate`` is runs.sheet's, which
     solves a trial's targets)."""
     return solve(mech, evaluate).mech if unsolved(mech) else mech
 

@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from linkcli.answers import design, quantities
+from linkcli.answers import quantities
+from linkcli.runs import design
 from linkcli.answers.quantities import Result, expressions
 from linkcli.errors import InputError
 
@@ -44,8 +45,8 @@ def _kind(mech, name):
 def _evaluate(mech, q, qdot, qddot, names, method, tol) -> Result:
     """``names`` (none an expression) by the path they need."""
     if mech.elements is None:       # a file with a driver: no vibration modules to import
-        if _asks_limits(mech, names):   # maxima, strokes ...: answers.limits
-            from linkcli.answers import limits
+        if _asks_limits(mech, names):   # maxima, strokes ...: runs.limits
+            from linkcli.runs import limits
             return limits.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
         return quantities.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
     from linkcli.answers.quantities import vibration

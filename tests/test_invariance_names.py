@@ -3,8 +3,9 @@ order, or with its points and links renamed, gives the same answers.
 
 The rewritings (tests/transforms.py):
 
-- ``reverse``: the sections, and the entries of frame, points, links, loads, quantities,
-  actuators, sliders, springs, dampers, rolling and cords, in the reverse order;
+- ``reverse``: the sections, the entries of frame, points, links, loads, quantities,
+  actuators, sliders, springs, dampers, rolling and cords, of the dynamics' and the
+  excitation's mappings, and the report's lists, in the reverse order;
 - ``permute``: the same in a random order (a seed per file);
 - ``prefix``: every point P renamed pP and every link L lL wherever they are referenced
   (links' points and shapes, sliders, drivers, coordinates, loads, quantities, expressions,

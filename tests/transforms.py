@@ -698,35 +698,46 @@ def _scale(value, c):
 
 
 # --- order and names ----------------------------------------------------------------------
-#: sections whose entries may come in any order
+#: sections whose entries may come in any order, and mappings inside sections
 ENTRIES = ("frame", "points", "links", "loads", "quantities", "actuators", "sliders",
            "springs", "dampers", "rolling", "cords")
+NESTED = (("dynamics",), ("dynamics", "bodies"), ("dynamics", "masses"),
+          ("dynamics", "discs"), ("dynamics", "friction"), ("dynamics", "friction_circles"),
+          ("excitation", "forces"), ("excitation", "supports"), ("report",))
+
+
+def reorder(data: dict, order) -> dict:
+    """The sections, the entries of :data:`ENTRIES` and the mappings of :data:`NESTED` put
+    in the order ``order(list)`` gives (a report's lists too: their order is the printing's)."""
+    out = {}
+    for key in order(list(data)):
+        value = copy.deepcopy(data[key])
+        if key in ENTRIES and isinstance(value, dict):
+            value = {k: value[k] for k in order(list(value))}
+        out[key] = value
+    for path in NESTED:
+        parent, inner = None, out
+        for part in path:
+            parent, inner = inner, inner.get(part) if isinstance(inner, dict) else None
+        if isinstance(inner, dict):
+            parent[path[-1]] = {k: inner[k] for k in order(list(inner))}
+    for section, names in (out.get("report") or {}).items():
+        if isinstance(names, list):
+            out["report"][section] = order(list(names))
+    return out
 
 
 def permute(data: dict, rng: random.Random) -> dict:
-    """The sections, and the entries of :data:`ENTRIES`, in a random order."""
-    out = {}
-    keys = list(data)
-    rng.shuffle(keys)
-    for key in keys:
-        value = copy.deepcopy(data[key])
-        if key in ENTRIES and isinstance(value, dict):
-            items = list(value.items())
-            rng.shuffle(items)
-            value = dict(items)
-        out[key] = value
-    return out
+    """The sections and their entries in a random order (:func:`reorder`)."""
+    def shuffled(items):
+        rng.shuffle(items)
+        return items
+    return reorder(data, shuffled)
 
 
 def reverse(data: dict) -> dict:
-    """The sections, and the entries of :data:`ENTRIES`, in the reverse order."""
-    out = {}
-    for key in reversed(list(data)):
-        value = copy.deepcopy(data[key])
-        if key in ENTRIES and isinstance(value, dict):
-            value = dict(reversed(list(value.items())))
-        out[key] = value
-    return out
+    """The sections and their entries in the reverse order (:func:`reorder`)."""
+    return reorder(data, lambda items: items[::-1])
 
 
 class Rename:

@@ -328,3 +328,22 @@ def test_a_parameter_varied_in_other_units(path, name, invariance_counter):
                for r in (a, b)]
         assert T.differences(*row, T.own_units(data)) == [], (path, name, values[i])
     invariance_counter["units: varied parameters"] += len(values)
+
+
+def test_the_rewriting_changes_the_numbers():
+    """The rewritten files are not the files: in m, rad, kN or in, deg, lbf, every file with a
+    length, an angle or a force written in it has other numbers there."""
+    changed = 0
+    for path in REWRITTEN:
+        data = data_of(path)
+        moved = []
+        for system in ("si", "us"):
+            rewrite = T.UnitRewrite(data, SYSTEMS[system])
+            new = rewrite.run()
+            sites = [p for p, kind in rewrite.sites.kinds.items()
+                     if kind in ("length", "angle", "force") and T.literal(T.at(data, p))]
+            moved += [T.at(new, p) != T.at(data, p) for p in sites]
+        if moved:
+            assert any(moved), path
+            changed += 1
+    assert changed > 0.8 * len(REWRITTEN)

@@ -558,7 +558,7 @@ def param_kinds(data: dict, sites: Sites) -> dict:
     params = data.get("params") or {}
     uses: dict = {}
     for path, kind in sites.kinds.items():
-        value = _get(data, path)
+        value = at(data, path)
         if isinstance(value, str) and kind is not None:
             used = scaled_name(value)
             if used in params and used != "k":
@@ -566,7 +566,7 @@ def param_kinds(data: dict, sites: Sites) -> dict:
     return {name: kinds.pop() for name, kinds in uses.items() if len(kinds) == 1}
 
 
-def _get(data, path):
+def at(data, path):
     for part in path:
         data = data[part]
     return data
@@ -605,7 +605,7 @@ class UnitRewrite:
     def value(self, value, kind):
         """``value`` (a number or an expression) of ``kind`` in the new units."""
         c = _num(ratio(self.old, self.new, kind))
-        if _literal(value):             # a number YAML reads as text (1e-300)
+        if literal(value):             # a number YAML reads as text (1e-300)
             value = float(value)
         if isinstance(value, (int, float)) and not isinstance(value, bool):
             return value * c if c != 1.0 else value
@@ -616,11 +616,11 @@ class UnitRewrite:
         out = copy.deepcopy(self.data)
         out["units"] = dict(self.new.declared)
         for path, kind in self.sites.kinds.items():
-            value = _literal(_get(self.data, path))
+            value = literal(at(self.data, path))
             if value and not 1e-300 <= abs(value * ratio(self.old, self.new, kind)) <= 1e300:
                 self.unknown.append(path + ("out of range in the new units",))
         for path, kind in self.sites.kinds.items():
-            _set(out, path, self.value(_get(self.data, path), kind))
+            _set(out, path, self.value(at(self.data, path), kind))
         params = self.data.get("params") or {}
         for name, value in params.items():
             if isinstance(value, list):
@@ -631,7 +631,7 @@ class UnitRewrite:
             out["find"] = self.find(self.data["find"])
             for name, item in ((out["find"] or {}).get("unknowns") or {}).items():
                 ends = item.get("between") if isinstance(item, dict) else None
-                if any(_literal(e) and not 1e-300 <= abs(_literal(e)) <= 1e300
+                if any(literal(e) and not 1e-300 <= abs(literal(e)) <= 1e300
                        for e in ends or []):
                     self.unknown.append(("find", "unknowns", name,
                                          "out of range in the new units"))
@@ -681,7 +681,7 @@ def target_unit(data: dict, name: str):
         return None
 
 
-def _literal(value) -> float:
+def literal(value) -> float:
     """The number a value writes (YAML reads 1e-300 as text), 0 for an expression."""
     try:
         return float(value) if not isinstance(value, bool) else 0.0
@@ -690,7 +690,7 @@ def _literal(value) -> float:
 
 
 def _scale(value, c):
-    if _literal(value):
+    if literal(value):
         value = float(value)
     if isinstance(value, (int, float)) and not isinstance(value, bool):
         return value * c

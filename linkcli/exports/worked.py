@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from linkcli.runs import design
 from linkcli.texts.explain import explain
 from linkcli.answers.formats import fmt, heading
 from linkcli.runs.sheet import evaluate
@@ -77,21 +78,26 @@ def document(doc, k=None, target="html", lang="en", figure=True, formulas=None) 
 
 
 def blocks(mech, lang="en", figure=True) -> list:
-    """The worked solution of ``mech`` (at its own digit and driver value) as blocks."""
+    """The worked solution of ``mech`` (at its own digit and driver value) as blocks; a
+    design question's data state its unknowns and targets, its analysis and figure are
+    those of the mechanism built with the unknowns' solution, and its results give the
+    unknowns, not the targets back."""
     w = WORDS[lang]
     result = evaluate(mech)
+    solution = design.solve(mech, evaluate) if design.unsolved(mech) else None
+    solved = solution.mech if solution is not None else mech
     out = [Block("heading", mech.title)]
     if mech.statement:
         out += [Block("text", p.strip()) for p in mech.statement.split("\n\n") if p.strip()]
-    out += [Block("heading", w["data"]), Block("lines", data_lines(mech, lang))]
+    out += [Block("heading", w["data"]), Block("lines", data_lines(mech, lang, solution))]
     out += [Block("heading", w["structure"]),
             Block("lines", explain(mech).splitlines()[2:])]
     if mech.elements is None:
-        out += _kinematics(mech, w)
+        out += _kinematics(solved, w)
     out.append(Block("heading", w["results"]))
     decimals = mech.report.get("decimals", 1)
     for section in REPORT_SECTIONS:
-        names = mech.report.get(section) or []
+        names = design.asked(mech, mech.report.get(section) or [])
         if names:
             rows = [[n, fmt(np.ravel(result.values[n])[0], decimals), result.units[n]]
                     for n in names]
@@ -100,7 +106,7 @@ def blocks(mech, lang="en", figure=True) -> list:
     if figure:
         from linkcli.exports.figure import figure_bytes
         out += [Block("heading", w["figure"]),
-                Block("figure", figure_bytes(mech, "svg").decode("utf-8"))]
+                Block("figure", figure_bytes(solved, "svg").decode("utf-8"))]
     return out
 
 

@@ -18,7 +18,7 @@ import numpy as np
 
 from linkcli.answers.quantities import angle_period, report_names, require_driver
 from linkcli.runs.sweep import listing
-from linkcli.runs.sheet import evaluate
+from linkcli.runs.sheet import evaluate, refuse_driving
 from linkcli.pictures.drawing import (COLORS, draw_elements, draw_loads, draw_masses,
                                       draw_mechanism, draw_polygon, figure)
 from linkcli.pictures.drawing import place_labels, set_limits
@@ -270,7 +270,8 @@ def _wrap(text, width=80):
 # --- draw and animate ------------------------------------------------------------------------
 def _positions(mech, q, method="closed"):
     """Positions at driver values ``q`` (SI) by ``method``; an error where the mechanism
-    cannot assemble."""
+    cannot assemble; a vibration problem takes the closed form only."""
+    refuse_driving(mech, method=method)
     solver = solver_for(mech, method)
     kin = solver.positions(q)
     solver.check(kin, velocities=False)
@@ -283,18 +284,19 @@ def _axes_text(ax, scene, title, fontsize):
     ax.grid(True, alpha=0.25)
 
 
-def draw(mech, output: str, dpi: int = 100) -> None:
-    """The mechanism at the file's driver value, with its vector polygon and loads."""
+def draw(mech, output: str, dpi: int = 100, method: str = "closed") -> None:
+    """The mechanism at the file's driver value, with its vector polygon and loads, its
+    positions and loads solved by ``method`` ('closed' or 'newton')."""
     check_output(output, IMAGE_FORMATS)
-    _save_figure(drawn(mech, dpi), output)
+    _save_figure(drawn(mech, dpi, method), output)
 
 
-def drawn(mech, dpi: int = 100):
+def drawn(mech, dpi: int = 100, method: str = "closed"):
     """The figure of ``draw``, its labels apart."""
     dyn = mech.dynamics
-    kin = _positions(mech, figure_coordinates(mech))
+    kin = _positions(mech, figure_coordinates(mech), method)
     scene = Scene(mech, kin.pos)
-    values, units_text = _load_values(mech)
+    values, units_text = _load_values(mech, method)
     fig = figure(8.0, 6.5, dpi)
     ax = fig.add_subplot(1, 1, 1)
     view = [scene.p[n] for n in mech.points] + disc_points(mech, dyn, scene)
@@ -320,11 +322,12 @@ def figure_coordinates(mech):
     return values[0] if len(values) == 1 else tuple(values)
 
 
-def _load_values(mech):
-    """({load: value}, {load: unit}) at the file's position, for the loads that are solved."""
+def _load_values(mech, method="closed"):
+    """({load: value}, {load: unit}) at the file's position, for the loads that are solved
+    (by ``method``)."""
     values, units_text = {}, {}
     if mech.loads and mech.elements is None:
-        result = evaluate(mech, names=list(mech.loads))
+        result = evaluate(mech, names=list(mech.loads), method=method)
         for name in mech.loads:
             if name in result.values:
                 values[name] = float(np.asarray(result.values[name]).reshape(-1)[0])

@@ -59,8 +59,8 @@ def sweep(mech, name, values, names, evaluate):
     except LinkcliError:
         return None
     answers, good = linear.answers(wanted, base)
-    units = base.units
-    if exprs:       # the expressions' units are their own, not of the answers they read
+    units = dict(base.units)
+    if exprs:       # an expression's unit is known once it is worked out
         answers, good, units = _expressions(mech, names, exprs, answers, good, base)
     else:
         answers = {n: answers[n] for n in names}
@@ -356,7 +356,7 @@ def _expressions(mech, names, exprs, answers, good, base):
     complete(mech, result, names, exprs)
     values = {n: np.asarray(v, dtype=float) for n, v in result.values.items()}
     return values, good & np.all([np.isfinite(v) for v in values.values()], axis=0), \
-        result.units
+        dict(result.units)
 
 
 def _agrees(mech, name, values, names, answers, good, evaluate) -> bool:

@@ -2,23 +2,32 @@
 
 Each trial builds the file again with the unknowns' values (input.document.rebuild) and
 solves the targets as ``solve`` does (any answer: kinematics, statics, dynamics, limits,
-vibrations, expressions); the residual of a target is (answer - target) / |target|
-(the answer itself where the target is 0), both in the answer's display unit, an angle's
-difference taken within half a turn.
+vibrations, expressions), by the method asked (the closed form or Newton's); the residual
+of a target is (answer - target) / |target| (the answer itself where the target is 0),
+both in the answer's display unit, an angle's difference taken within half a turn.  A
+trial that raises an error is a trial without an answer, except an error that holds at
+every value (the structure's, a command-line option's): that is the answer.
 
 - One unknown in an interval [a, b]: the residual is sampled at SAMPLES values (evenly, or
-  geometrically where b / a > 10 with a > 0); each change of sign is refined by Brent's
-  method (scipy.optimize.brentq) to the parameter's rounding; between samples where |r| dips
-  without changing sign, a bounded minimisation of |r| looks for two roots close together.
-  Several roots are listed, and one is taken only by the file's ``choose`` rule.
+  geometrically, PER_DECADE a decade, where b / a > 10 with a > 0); next to a sample that
+  cannot be solved, the edge of what can is found by bisection (geometric over decades),
+  and each part that can is sampled again.  Each change of sign
+  is refined by Brent's method (scipy.optimize.brentq) to XTOL of the root (not of the
+  interval); between samples where |r| dips without changing sign, a bounded minimisation
+  of |r| looks for two roots close together.  A root must be one: the answer there is its
+  target within ROOT of the target's scale (|target|; for a target 0, a turn for an angle,
+  else the typical |answer| met by the search), else the sign changed across a jump (an
+  angle's wrap, a pole) and it is no root.  Several roots are listed, and one is taken only
+  by the file's ``choose`` rule.
 - Several unknowns (or one from a start value): scipy.optimize.root (Powell's hybrid
   method) from the start values, or least_squares within the intervals; the Jacobian at
   the solution (by differences) must not be singular, else the targets do not fix the
   unknowns.
 
 Where no value gives the targets, the error says so with the targets' values at the ends
-of the interval (or the residuals where the search stopped); a trial where the mechanism
-cannot be assembled or solved is named with its values (DesignError, exit 3).
+of the interval (or the residuals where the search stopped) and the jumps it passes the
+target by; a trial where the mechanism cannot be assembled or solved next to a root is
+named with its values (DesignError, exit 3).
 """
 from __future__ import annotations
 
@@ -28,14 +37,22 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.errors import DesignError, LinkcliError
+from linkcli.errors import (DesignError, InputError, LinkcliError, SolveError,
+                             StructureError)
 from linkcli.model.dimensions import param_unit_name
 
-#: samples of the interval of one unknown
+#: samples of the interval of one unknown (at least), and a decade's where it spans decades
 SAMPLES = 9
-#: a root of one unknown is refined to this fraction of the interval
+PER_DECADE = 3
+#: the most samples of one scan (an interval of hundreds of decades)
+MOST = 240
+#: a root of one unknown is refined to this fraction of its size (of the larger end of the
+#: samples that bracket it)
 XTOL = 1e-12
-#: the residuals of a solution of several unknowns are at most this (relative)
+#: at a root of one unknown, |answer - target| is at most this fraction of the target's scale
+ROOT = 1e-6
+#: the residuals of a solution of several unknowns are at most this (relative to each
+#: target's scale, Residuals.scale)
 RESIDUAL = 1e-9
 #: a Jacobian whose condition number is above this is singular (the targets do not fix the
 #: unknowns independently)
@@ -55,6 +72,7 @@ class Solution:
     method: str
     roots: list = field(default_factory=list)     # one unknown: every root found
     notes: list = field(default_factory=list)     # what the search met on the way
+    units: dict = field(default_factory=dict)     # each target's display unit
 
 
 def unsolved(mech) -> bool:
@@ -62,19 +80,27 @@ def unsolved(mech) -> bool:
     return mech.design is not None and not mech.design.fixed
 
 
-def resolved(mech, evaluate):
+def resolved(mech, evaluate, method="closed", tol=None):
     """``mech`` itself, or, where it asks a design question, the mechanism built with the
-    unknowns' solution (solved once per mechanism; ``evaluate`` is runs.sheet's, which
-    solves a trial's targets)."""
-    return solve(mech, evaluate).mech if unsolved(mech) else mech
+    unknowns' solution (solved once per mechanism and method; ``evaluate`` is runs.sheet's,
+    which solves a trial's targets by ``method``)."""
+    return solve(mech, evaluate, method, tol).mech if unsolved(mech) else mech
 
 
-def solve(mech, evaluate) -> Solution:
-    """The unknowns of ``mech.design`` (kept once found, per mechanism object)."""
-    found = _SOLVED.get(mech)
+def solve(mech, evaluate, method="closed", tol=None) -> Solution:
+    """The unknowns of ``mech.design`` (kept once found, per mechanism object and method)."""
+    kept = _SOLVED.setdefault(mech, {})
+    found = kept.get((method, tol))
     if found is None:
-        found = _SOLVED[mech] = _solve(mech, evaluate)
+        found = kept[(method, tol)] = _solve(mech, evaluate, method, tol)
     return found
+
+
+def asked(mech, names) -> list:
+    """``names`` without the targets of ``mech``'s design question: a course document gives
+    the targets as data and asks the unknowns, not the targets back."""
+    targets = {t.name for t in mech.design.targets} if mech.design is not None else set()
+    return [n for n in names if n not in targets]
 
 
 def answer(mech, name):
@@ -87,14 +113,18 @@ class Residuals:
     """The targets' relative residuals as a function of the unknowns' values, counting the
     evaluations (each one the file built and solved)."""
 
-    def __init__(self, mech, evaluate):
+    def __init__(self, mech, evaluate, method="closed", tol=None):
         self.mech = mech
         self.evaluate = evaluate
+        self.method, self.tol = method, tol
         self.design = mech.design
         self.names = self.design.names
         self.evaluations = 0
         self.last = {}              # target -> its answer at the last trial (display units)
         self.units = {}
+        self.goals = {}             # target -> its value in the answer's display unit
+        self.periods = {}           # target -> its turn where it is an angle, else None
+        self.scales = {}            # target -> its scale, settled after the scan
         self.history = []           # (x, {target: answer}) of every trial solved
 
     def variant(self, x):
@@ -103,29 +133,69 @@ class Residuals:
 
     def __call__(self, x) -> np.ndarray:
         from linkcli.answers.quantities import angle_period
-        from linkcli.model.dimensions import dimension
-        from linkcli.model.units import parse_unit
         self.evaluations += 1
         try:
             variant = self.variant(x)
-            result = self.evaluate(variant, names=[t.name for t in self.design.targets])
+            result = self.evaluate(variant, names=[t.name for t in self.design.targets],
+                                   method=self.method, tol=self.tol)
         except LinkcliError as exc:
+            if _every_trial(exc):
+                raise
             raise Trial(exc, np.atleast_1d(x)) from None
-        out = []
+        out, answers = [], {}
         for t in self.design.targets:
-            value = self.last[t.name] = float(np.asarray(result.values[t.name]))
+            value = answers[t.name] = float(np.asarray(result.values[t.name]))
             unit = self.units[t.name] = result.units[t.name]
-            goal = t.value
-            if t.unit is not None:      # the target in the answer's display unit
-                dim = dimension(variant, t.name)
-                goal *= parse_unit(t.unit, dim)[1] / parse_unit(unit, dim)[1]
-            diff = value - goal
-            period = angle_period(variant, t.name, unit)
-            if period:
-                diff = math.remainder(diff, period)
-            out.append(diff / (abs(goal) if goal else 1.0))
-        self.history.append((np.atleast_1d(x).copy(), dict(self.last)))
+            if not math.isfinite(value):
+                raise Trial(SolveError(f"{t.name} is not a finite number there"),
+                            np.atleast_1d(x))
+            goal = self.goals[t.name] = self.goal(t, variant, unit)
+            self.periods[t.name] = angle_period(variant, t.name, unit)
+            out.append(self.difference(t.name, value) / (abs(goal) if goal else 1.0))
+        self.last = answers
+        self.history.append((np.atleast_1d(x).copy(), dict(answers)))
         return np.array(out)
+
+    @staticmethod
+    def goal(target, variant, unit) -> float:
+        """The target's value in the answer's display unit ``unit``."""
+        from linkcli.model.dimensions import dimension
+        from linkcli.model.units import parse_unit
+        if target.unit is None:
+            return target.value
+        dim = dimension(variant, target.name)
+        return target.value * parse_unit(target.unit, dim)[1] / parse_unit(unit, dim)[1]
+
+    def difference(self, name, value) -> float:
+        """answer - target in the display unit, an angle's within half a turn."""
+        diff = value - self.goals[name]
+        period = self.periods.get(name)
+        return math.remainder(diff, period) if period else diff
+
+    def settle(self) -> None:
+        """Fix each target's scale (:meth:`scale`) at the trials solved so far: those of the
+        scan (or the start), before any search closes in on a root or a jump."""
+        self.scales = {t.name: self.scale(t.name) for t in self.design.targets
+                       if t.name in self.goals}
+
+    def scale(self, name) -> float:
+        """The size |answer - target| is measured against: |target|; for a target 0, a turn
+        for an angle, else the median |answer| of the trials solved (the answer's typical
+        size over the search), as settled."""
+        goal = self.goals[name]
+        if goal:
+            return abs(goal)
+        if self.periods.get(name):
+            return self.periods[name]
+        if name in self.scales:
+            return self.scales[name]
+        met = [abs(answers[name]) for _, answers in self.history if answers[name]]
+        return float(np.median(met)) if met else 1.0
+
+    def miss(self) -> float:
+        """The largest |answer - target| of the last trial, each relative to its scale
+        (dimensionless)."""
+        return max(abs(self.difference(n, v)) / self.scale(n) for n, v in self.last.items())
 
     def text(self, x) -> str:
         """'ks = 120 N/m' of the unknowns' values ``x``."""
@@ -137,6 +207,14 @@ class Residuals:
         """The targets' answers at the last trial, with their units."""
         return ", ".join(f"{n} = {v:.6g} {self.units.get(n, '')}".rstrip()
                          for n, v in self.last.items())
+
+
+def _every_trial(exc) -> bool:
+    """Whether ``exc`` holds whatever the unknowns' values: the file's structure (its Assur
+    groups), or a command-line option the file does not take; it is then the answer itself,
+    with its own advice, not a trial's failure."""
+    return isinstance(exc, StructureError) or (
+        isinstance(exc, InputError) and str(exc.key or "").startswith("--"))
 
 
 class Trial(Exception):
@@ -156,88 +234,172 @@ def _fail(mech, residuals, trial: Trial, where="") -> DesignError:
 
 
 # --- the search ----------------------------------------------------------------------------
-def _solve(mech, evaluate) -> Solution:
-    residuals = Residuals(mech, evaluate)
+def _solve(mech, evaluate, method, tol) -> Solution:
+    residuals = Residuals(mech, evaluate, method, tol)
     unknowns = mech.design.unknowns
     if len(unknowns) == 1 and unknowns[0].interval:
         return _one(mech, residuals, unknowns[0])
     return _several(mech, residuals)
 
 
-def samples(lo: float, hi: float, count: int = SAMPLES) -> np.ndarray:
-    """``count`` values from lo to hi: geometric for a positive range over a decade."""
-    if lo > 0 and hi / lo > 10:
-        return np.geomspace(lo, hi, count)
+def _decades(lo: float, hi: float) -> float:
+    """How many decades [lo, hi] spans (0 where it is not positive)."""
+    return math.log10(hi) - math.log10(lo) if lo > 0 else 0.0
+
+
+def samples(lo: float, hi: float, count: int = SAMPLES, per_decade: int = PER_DECADE) \
+        -> np.ndarray:
+    """At least ``count`` values from lo to hi: geometric, ``per_decade`` a decade (at most
+    MOST), for a positive range over a decade; else even."""
+    decades = _decades(lo, hi)
+    if decades > 1:
+        return np.geomspace(lo, hi, max(count, min(MOST, math.ceil(per_decade * decades) + 1)))
     return np.linspace(lo, hi, count)
 
 
-def _one(mech, residuals, unknown) -> Solution:
-    """One unknown in [lo, hi]: every sign change of the residual refined by Brent's method."""
-    from scipy.optimize import brentq
-    xs = list(samples(unknown.lo, unknown.hi))
-    fs, failed = [], []
-    for x in xs:
-        try:
-            fs.append(float(residuals([x])[0]))
-        except Trial as trial:
-            fs.append(None)
-            failed.append(trial)
-    if failed and len(failed) < len(xs):
-        xs, fs = _edges(residuals, xs, fs)
-    brackets = _brackets(residuals, xs, fs)
-    roots = []
-    width = unknown.hi - unknown.lo
+def middle(a: float, b: float) -> float:
+    """The middle of [a, b]: geometric where it spans over a decade of positive values."""
+    lo, hi = min(a, b), max(a, b)
+    return math.sqrt(lo) * math.sqrt(hi) if _decades(lo, hi) > 1 else 0.5 * (a + b)
 
-    def f(x):
-        return float(residuals([x])[0])
+
+def _one(mech, residuals, unknown) -> Solution:
+    """One unknown in [lo, hi]: every sign change of the residual refined by Brent's method,
+    kept where the answer there is its target (not a jump)."""
+    scan = Scan(residuals)
+    scan.at(samples(unknown.lo, unknown.hi))
+    if scan.failed and len(scan.failed) < len(scan.points):
+        scan.edges()
+        scan.fill()
+    residuals.settle()
+    roots, jumps = [], []
+    brackets = [b for run in scan.runs() for b in _brackets(residuals, run)]
     for a, b, fa, fb in brackets:
         if fa == 0 or fb == 0:
             roots.append(a if fa == 0 else b)
             continue
+        start = len(residuals.history)
         try:
-            roots.append(brentq(f, a, b, xtol=XTOL * width, rtol=4 * np.finfo(float).eps))
+            x = _polish(residuals, a, b)
+            residuals([x])
         except Trial as trial:
             raise _fail(mech, residuals, trial, f", between {a:.6g} and {b:.6g}") from None
-    roots = _distinct(sorted(roots), XTOL * 64 * width)
-    notes = [f"no answer at {residuals.text(t.x)}: {t.error.detail}" for t in failed]
+        if residuals.miss() <= ROOT:
+            roots.append(x)
+        else:       # the trials closing in on a jump are not answers met on the way
+            jumps.append((x, dict(residuals.last)))
+            del residuals.history[start:]
+    roots = _distinct(sorted(roots))
+    notes = scan.gaps()
+    notes += [f"a jump, not a root, at {residuals.text([x])}: " + _answers(residuals, seen)
+              for x, seen in jumps]
     if not roots:
-        raise _no_root(mech, residuals, unknown, xs, fs, failed)
+        raise _no_root(mech, residuals, unknown, scan, jumps)
     value = _choose(mech, residuals, roots)
-    solution = Solution({unknown.name: value}, residuals.variant([value]),
-                        residuals.evaluations, "scan and Brent's method", roots, notes)
-    return solution
+    return Solution({unknown.name: value}, residuals.variant([value]),
+                    residuals.evaluations, "scan and Brent's method", roots, notes,
+                    dict(residuals.units))
+
+
+def _polish(residuals, a, b) -> float:
+    """The root of the residual in [a, b] (a sign change) by Brent's method, to XTOL of the
+    bracket's larger end: relative to the root's size, not to the interval's."""
+    from scipy.optimize import brentq
+    return brentq(lambda x: float(residuals([x])[0]), a, b,
+                  xtol=XTOL * max(abs(a), abs(b)), rtol=4 * np.finfo(float).eps)
+
+
+def _answers(residuals, seen) -> str:
+    return ", ".join(f"{n} = {v:.6g} {residuals.units.get(n, '')}".rstrip()
+                     for n, v in seen.items())
 
 
 #: bisections of the step between a sample that is solved and one that is not
 EDGE = 12
 
 
-def _edges(residuals, xs, fs):
-    """The samples with, beside each one that cannot be solved next to one that can, the
-    last value solved found by bisection towards it (EDGE halvings): a root between the
-    last solved sample and the edge of what assembles is then bracketed too."""
-    out = list(zip(xs, fs))
-    for (a, fa), (b, fb) in zip(list(out), list(out)[1:]):
-        if (fa is None) == (fb is None):
-            continue
-        good, bad, f_good = (a, b, fa) if fa is not None else (b, a, fb)
-        for _ in range(EDGE):
-            middle = 0.5 * (good + bad)
+class Scan:
+    """The samples of one unknown's residual: x -> residual (None where the file cannot be
+    solved), and the trials that could not be."""
+
+    def __init__(self, residuals):
+        self.residuals = residuals
+        self.points = {}
+        self.failed = []
+
+    def at(self, xs) -> None:
+        for x in xs:
+            x = float(x)
+            if x in self.points:
+                continue
             try:
-                f_good, good = float(residuals([middle])[0]), middle
-            except Trial:
-                bad = middle
-        out.append((good, f_good))
-    out.sort(key=lambda pair: pair[0])
-    return [x for x, _ in out], [f for _, f in out]
+                self.solve(x)
+            except Trial as trial:
+                self.points[x] = None
+                self.failed.append(trial)
+
+    def solve(self, x) -> None:
+        self.points[x] = float(self.residuals([x])[0])
+
+    def sorted(self) -> list:
+        return sorted(self.points.items())
+
+    def gaps(self) -> list:
+        """'no answer at ...' of each run of samples that cannot be solved, with the error
+        of its first."""
+        errors = {float(t.x[0]): t.error.detail for t in self.failed}
+        runs, run = [], []
+        for x, f in self.sorted() + [(None, 0.0)]:
+            if f is None:
+                run.append(x)
+            elif run:
+                runs.append(run)
+                run = []
+        text = self.residuals.text
+        return [f"no answer at {text([r[0]])}: {errors[r[0]]}" if len(r) == 1 else
+                f"no answer at the {len(r)} samples from {text([r[0]])} to {text([r[-1]])}: "
+                f"{errors[r[0]]}" for r in runs]
+
+    def runs(self) -> list:
+        """The runs of consecutive samples that are solved, each a list of (x, residual):
+        no root is bracketed across a value where the file cannot be solved."""
+        out = [[]]
+        for x, f in self.sorted():
+            if f is None:
+                out.append([])
+            else:
+                out[-1].append((x, f))
+        return [run for run in out if run]
+
+    def edges(self) -> None:
+        """Between each sample that cannot be solved and one that can, the edge of what can
+        by bisection (EDGE halvings, geometric over decades); every value met is a sample."""
+        for (a, fa), (b, fb) in zip(self.sorted(), self.sorted()[1:]):
+            if (fa is None) == (fb is None):
+                continue
+            good, bad = (a, b) if fa is not None else (b, a)
+            for _ in range(EDGE):
+                x = middle(good, bad)
+                try:
+                    self.solve(x)
+                    good = x
+                except Trial:
+                    bad = x
+
+    def fill(self) -> None:
+        """Each run of samples that can be solved sampled again from end to end, SAMPLES
+        values (the scan met values where the file cannot be solved, and the bisections
+        crowd the edges)."""
+        for run in self.runs():
+            if len(run) > 1:
+                self.at(samples(run[0][0], run[-1][0], per_decade=0)[1:-1])
 
 
-def _brackets(residuals, xs, fs) -> list:
-    """(a, b, f(a), f(b)) of the intervals where the residual changes sign, and two about
-    each dip of |f| between samples of one sign that a bounded minimisation finds crossing
-    zero (two roots close together)."""
+def _brackets(residuals, good) -> list:
+    """(a, b, f(a), f(b)) of the intervals between the samples ``good`` ((x, f) in order)
+    where the residual changes sign, and two about each dip of |f| between samples of one
+    sign that a bounded minimisation finds crossing zero (two roots close together)."""
     from scipy.optimize import minimize_scalar
-    good = [(x, f) for x, f in zip(xs, fs) if f is not None]
     out = [(a, b, fa, fb) for (a, fa), (b, fb) in zip(good, good[1:]) if fa * fb <= 0]
     for (a, fa), (m, fm), (b, fb) in zip(good, good[1:], good[2:]):
         if not (fa * fm > 0 and fm * fb > 0 and abs(fm) < min(abs(fa), abs(fb))):
@@ -255,11 +417,12 @@ def _brackets(residuals, xs, fs) -> list:
     return sorted(out)
 
 
-def _distinct(roots, tol) -> list:
-    """``roots`` (sorted) with those within ``tol`` of the previous one left out."""
+def _distinct(roots) -> list:
+    """``roots`` (sorted) with those within 64 XTOL of the previous one (relative) left
+    out."""
     out = []
     for r in roots:
-        if not out or r - out[-1] > tol:
+        if not out or r - out[-1] > 64 * XTOL * max(abs(r), abs(out[-1])):
             out.append(r)
     return out
 
@@ -281,13 +444,13 @@ def _choose(mech, residuals, roots) -> float:
     return min(roots, key=lambda r: abs(r - rule[1]))
 
 
-def _no_root(mech, residuals, unknown, xs, fs, failed) -> DesignError:
-    """No sign change: the target's answers at the ends of what could be solved, and the
-    least and the largest met on the way."""
+def _no_root(mech, residuals, unknown, scan, jumps) -> DesignError:
+    """No root: the target's answers at the ends of what could be solved, the least and
+    the largest met on the way, and the jumps across the target that are no root."""
     target = mech.design.targets[0]
     seen = sorted((float(x[0]), answers[target.name]) for x, answers in residuals.history)
     if not seen:
-        return _fail(mech, residuals, failed[0])
+        return _fail(mech, residuals, scan.failed[0])
     unit = residuals.units[target.name]
 
     def at(x, value):
@@ -295,13 +458,25 @@ def _no_root(mech, residuals, unknown, xs, fs, failed) -> DesignError:
     low = min(seen, key=lambda pair: pair[1])
     high = max(seen, key=lambda pair: pair[1])
     want = target.text if target.unit else f"{target.text} {unit}"
-    cut = f"; {len(failed)} of the {len(xs)} samples cannot be solved" if failed else ""
+    cut = (f"; {len(scan.failed)} of the {len(scan.points)} samples cannot be solved"
+           if scan.failed else "")
+    jumped = "".join(_jump(residuals, target.name, want.strip(), x, answers)
+                     for x, answers in jumps)
     return DesignError(f"no value of {unknown.name} in [{unknown.lo:.6g}, {unknown.hi:.6g}] "
                        f"gives {target.name} = {want.strip()}: {target.name} is "
                        f"{at(*seen[0])} and {at(*seen[-1])}, between {at(*low)} and "
-                       f"{at(*high)}{cut}", file=mech.file, key="find", reason="no root",
-                       values=(unknown.lo, unknown.hi),
+                       f"{at(*high)}{jumped}{cut}", file=mech.file, key="find",
+                       reason="no root", values=(unknown.lo, unknown.hi),
                        hint="widen the interval, or check that the target can be reached")
+
+
+def _jump(residuals, name, want, x, answers) -> str:
+    """'; ...' of a sign change of answer - target across a jump, which is no root."""
+    there = f"{residuals.text([x])} ({_answers(residuals, answers)} there)"
+    if residuals.periods.get(name):
+        return (f"; {name} - {want} changes sign only where it wraps, half a turn from the "
+                f"target, at {there}: no root")
+    return f"; {name} - {want} changes sign only across a jump (a pole) at {there}: no root"
 
 
 def _several(mech, residuals) -> Solution:
@@ -309,10 +484,11 @@ def _several(mech, residuals) -> Solution:
     values, or least squares within the intervals."""
     from scipy.optimize import least_squares, root
     unknowns = mech.design.unknowns
-    x0 = np.array([u.start if u.start is not None else 0.5 * (u.lo + u.hi) for u in unknowns])
+    x0 = np.array([u.start if u.start is not None else middle(u.lo, u.hi) for u in unknowns])
     bounded = any(u.interval for u in unknowns)
     try:
         start = residuals(x0)
+        residuals.settle()
         condition = _condition(_jacobian(residuals, x0, start))
     except Trial as trial:
         raise _fail(mech, residuals, trial) from None
@@ -333,22 +509,23 @@ def _several(mech, residuals) -> Solution:
         raise _fail(mech, residuals, trial) from None
     try:
         r = residuals(x)
+        miss, reached = residuals.miss(), residuals.answers()
         jacobian = _jacobian(residuals, x, r)
     except Trial as trial:
         raise _fail(mech, residuals, trial) from None
     condition = _condition(jacobian)
-    if np.max(np.abs(r)) > RESIDUAL:
+    if miss > RESIDUAL:
         if condition > SINGULAR:
             raise _singular(mech, residuals, x, condition)
         raise DesignError(f"the targets cannot be reached: the search stopped at "
-                          f"{residuals.text(x)} with {residuals.answers()} (residuals "
+                          f"{residuals.text(x)} with {reached} (residuals "
                           + ", ".join(f"{v:.2e}" for v in r) + " of the targets)",
                           file=mech.file, key="find", reason="unreachable", values=x,
                           hint="check the targets, or give other start values or intervals")
     if condition > SINGULAR:
         raise _singular(mech, residuals, x, condition)
     return Solution(dict(zip(residuals.names, map(float, x))), residuals.variant(x),
-                    residuals.evaluations, method, [], [])
+                    residuals.evaluations, method, [], [], dict(residuals.units))
 
 
 def _jacobian(residuals, x, r) -> np.ndarray:

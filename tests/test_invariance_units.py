@@ -120,7 +120,7 @@ def check(path: str, system: dict) -> list:
             outcome = T.solve(T.to_yaml(new), k, path)
         lengths = (rewrite.old.factor("length"), rewrite.new.factor("length"))
         out += [f"k={k}: {d}" for d in T.differences(base, outcome, T.own_units(data),
-                                                      lengths=lengths)]
+                                                      lengths=lengths, same_keys=True)]
     return out
 
 

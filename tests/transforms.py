@@ -1011,11 +1011,12 @@ def to_yaml(data) -> str:
 class Outcome:
     """The answers of a file (name -> (value, display unit), points), or its refusal."""
 
-    def __init__(self, values=None, units=None, points=None, error=None):
+    def __init__(self, values=None, units=None, points=None, error=None, key=None):
         self.values = values or {}
         self.units = units or {}
         self.points = points or {}
         self.error = error
+        self.key = key          # the key a refusal names
 
     def __repr__(self):
         return f"Outcome(error={self.error!r})" if self.error else f"Outcome({self.values})"
@@ -1033,7 +1034,7 @@ def solve(text: str, k=None, name="<text>") -> Outcome:
         except StructureError:
             result = linkage.solve(method="newton")
     except linkcli.LinkcliError as exc:
-        return Outcome(error=(exc.exit_code, type(exc).__name__))
+        return Outcome(error=(exc.exit_code, type(exc).__name__), key=_keys(exc))
     except Exception as exc:        # noqa: BLE001 - an internal error is an outcome too
         return Outcome(error=(70, type(exc).__name__))
     values = {n: float(v) for n, v in result.values.items()}
@@ -1051,15 +1052,24 @@ def _si(value, unit, dim=None):
     return value * f, d
 
 
+def _keys(exc):
+    """The keys a refusal names (each of a batch of input errors)."""
+    inner = getattr(exc, "errors", None)
+    return tuple(e.key for e in inner) if inner else (exc.key,)
+
+
 def differences(a: Outcome, b: Outcome, own_units=(), rename=lambda n: n, rtol=1e-9,
-                lengths=(1.0, 1.0), point=lambda n: n) -> list:
+                lengths=(1.0, 1.0), point=lambda n: n, same_keys=False) -> list:
     """What differs between the answers ``a`` and ``b`` (``b``'s names are ``rename`` of
     ``a``'s, its points ``point`` of ``a``'s): each in SI, angles modulo a turn; names in
     ``own_units`` (a quantity's own ``unit:``) also in their display unit; the report's points
-    in SI by the files' length units ``lengths`` (m per unit)."""
+    in SI by the files' length units ``lengths`` (m per unit).  Refusals: the same exit code
+    and type (and, with ``same_keys``, the same keys named)."""
     if a.error or b.error:
-        return [] if a.error == b.error else [f"outcome {a.error or 'solved'} != "
-                                              f"{b.error or 'solved'}"]
+        if a.error == b.error and (not same_keys or a.key == b.key):
+            return []
+        return [f"outcome {a.error or 'solved'} {a.key or ''} != {b.error or 'solved'} "
+                f"{b.key or ''}"]
     out = _points(a, b, lengths, point, rtol)
     if {rename(n) for n in a.values} != set(b.values):
         out.append(f"names {sorted(a.values)} != {sorted(b.values)}")

@@ -154,7 +154,11 @@ class Units:
                 return self.names["angle"], self.factor("angle")
             if order == 1:
                 return self.names["angular_rate"], self.factor("angular_rate")
-            name = self.names["angle"] if self.names["angular_rate"] == "rpm" else self.names["angular_rate"][:-2]
+            # an angular acceleration in the angle unit of the rate (deg/s: deg/s^2), or of
+            # the file where the rate counts turns (rpm, rev/s: the file's deg/s^2)
+            name = self.names["angular_rate"][:-2]
+            if name not in ANGLE:
+                name = self.names["angle"]
             return f"{name}/s^2", ANGLE[name]
         unit = self.names["length"]
         factor = self.factor("length")
@@ -356,26 +360,6 @@ def _token_candidates(token: str) -> list:
         return [(dim ** p, factor ** p) for dim, factor in _unit_candidates(base)]
     except InputError:          # a power that is not a whole number of halves
         return []
-
-
-#: units that count cycles (turns) where the tables count radians: in an expression a value
-#: in them is in cycles per second, as SI writes frequencies (1 Hz = 1/s, 1 rpm = 1/60 1/s)
-CYCLES = ("Hz", "rpm", "rev/s")
-
-
-def cycles(name: str) -> int:
-    """The power of cycles in the unit ``name`` (1 for Hz or rpm, -1 for 1/Hz, 0 for rad/s)."""
-    text = str(name).strip()
-    if text in CYCLES:
-        return 1
-    up, _, down = text.partition("/")
-    count = 0
-    for sign, part in ((1, up), (-1, down.strip("()"))):
-        for token in part.split():
-            base, _, power = token.partition("^")
-            if base in CYCLES:
-                count += sign * (int(power) if power.isdigit() else 1)
-    return count
 
 
 def parse_unit(name, expected=None):

@@ -1,0 +1,233 @@
+"""Units of answers at the edges: frequencies in expressions, `unit:` on vibration answers,
+rates of names ending in 'd', critical damping, and the units part of the invariance layer
+for expressions.
+
+Each file of tests/data/trust3/ reproduces a defect; its header says what is right, and
+the tests assert that (numbers from the header or a closed form written here, never from
+linkcli's own output).  The invariance tests write vibration and linkage files whose
+expression answers read one frequency or speed shown in rad/s, Hz and rpm, and check
+that they agree in SI with factors written here, independently of linkcli's tables.
+"""
+from __future__ import annotations
+
+import math
+import os
+
+import pytest
+
+import linkcli
+from tests.cli_helpers import run
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DATA = os.path.join(ROOT, "tests", "data", "trust3")
+TWO_PI = 2 * math.pi
+#: SI value (rad/s) of one unit, written here from the definitions, not read from linkcli:
+#: one cycle is 2 pi rad, a minute 60 s, a degree pi/180 rad
+SI = {"rad/s": 1.0, "Hz": TWO_PI, "rpm": TWO_PI / 60, "deg/s": math.pi / 180, "rev/s": TWO_PI,
+      "1/s": 1.0}
+
+
+def data(name):
+    return os.path.join(DATA, name)
+
+
+def printed(out: str) -> dict:
+    """{name: (number, unit)} of the lines 'name = number unit' that ``solve`` prints."""
+    found = {}
+    for line in out.splitlines():
+        name, eq, rest = line.partition("=")
+        if not eq or not name.startswith("  "):
+            continue
+        words = rest.split()
+        try:
+            found[name.strip()] = (float(words[0]), " ".join(words[1:]))
+        except (ValueError, IndexError):
+            continue
+    return found
+
+
+# --- frequencies in expressions: rad/s is SI, 1 Hz = 2 pi rad/s, 1 rpm = 2 pi/60 rad/s --------
+def test_expression_frequencies_in_hz_rpm_and_rad_s_are_one_frequency():
+    """expr-frequency-units.yaml: w1 = 2 pi rad/s = 1 Hz = 60 rpm: w1 shown in Hz is 1,
+    f1 in rad/s 6.2832, w1 - f1 = 0, w1/f1 = 1, both in rpm 60 (header, 4 decimals)."""
+    code, out, err = run(["solve", data("expr-frequency-units.yaml")])
+    assert code == 0, err
+    v = printed(out)
+    assert v["w1"] == (6.2832, "rad/s") and v["f1"] == (1.0, "Hz")
+    assert v["w_in_Hz"] == (1.0, "Hz")
+    assert v["f_in_rads"] == (6.2832, "rad/s")
+    assert v["diff"][0] == 0 and v["diff"][1] == "rad/s"
+    assert v["ratio"] == (1.0, "")
+    assert v["w_rpm"] == (60.0, "rpm") and v["f_rpm"] == (60.0, "rpm")
+    # one frequency: any expression of it is the same whichever way it is shown
+    assert v["T"] == v["Tw"] == (round(1 / TWO_PI, 4), "s")
+    assert v["two_pi_f"] == (round(TWO_PI * TWO_PI, 4), "rad/s")
+
+
+def test_expression_angular_speed_of_a_crank_in_rpm_and_hz():
+    """expr-rpm-linkage.yaml: qdot = 360 deg/s = 1 turn/s = 60 rpm = 1 Hz (header)."""
+    code, out, err = run(["solve", data("expr-rpm-linkage.yaml")])
+    assert code == 0, err
+    v = printed(out)
+    assert v["q_degs"] == (360.0, "deg/s")
+    assert v["q_rads"] == (round(TWO_PI, 4), "rad/s")
+    assert v["q_rpm"] == (60.0, "rpm")
+    assert v["q_Hz"] == (1.0, "Hz")
+    assert v["b_rad"] == (round(math.radians(v["b_deg"][0]), 4), "rad")
+
+
+# --- the units part of the invariance layer for expressions -------------------------------
+SHOWN = ("rad/s", "Hz", "rpm", "1/s")
+
+VIBRATION = """title: "mass on a spring, one frequency shown in several units"
+units: {length: m, angle: deg, stiffness: N/m, frequency: FILE}
+params: {m: 2, ks: 800, fe: 3}
+frame: {B: [0, 0]}
+points: {P: [0, 0.3]}
+sliders: {body: {point: P, guide: {x: 0}}}
+coordinates: {y: {y: P}}
+springs: {s: {between: [B, P], k: ks, preload: static}}
+dynamics: {gravity: 9.81, masses: {P: m}}
+excitation: {frequency: fe, forces: {F: {at: P, y: 1}}}
+quantities:
+  w_rad: {natural_frequency: 1, unit: rad/s}
+  w_Hz: {natural_frequency: 1, unit: Hz}
+  w_rpm: {natural_frequency: 1, unit: rpm}
+  w_file: {natural_frequency: 1}
+  W: {forcing_frequency: true}
+EXPRESSIONS
+report:
+  vibration: [NAMES]
+"""
+
+LINKAGE = """title: "a crank turning at one speed, read in several units"
+units: {length: m, angle: deg, angular_rate: FILE}
+frame: {O: [0, 0]}
+points: {A: [0.3, 0.4]}
+links:
+  crank: {points: [O, A], length: 0.5}
+driver: {angle: [O, A], value: 53, rate: RATE}
+quantities:
+  turn: {rotation: crank}
+EXPRESSIONS
+report:
+  velocity: [NAMES]
+"""
+
+
+def _expressions(sources) -> dict:
+    """{name: (expression, unit, what it is in SI as a multiple of the frequency w)}: each
+    source shown in every unit of :data:`SHOWN`, its period, and its ratio to the others."""
+    out = {}
+    for i, src in enumerate(sources):
+        for unit in SHOWN:
+            out[f"e{i}_{unit.replace('/', '_')}"] = (src, unit, 1.0)
+        out[f"T{i}"] = (f"2*pi/{src}", "s", -1.0)
+        for j, other in enumerate(sources):
+            out[f"r{i}_{j}"] = (f"{src}/{other}", None, 0.0)
+            out[f"d{i}_{j}"] = (f"{src} - {other}", "rad/s", None)
+    return out
+
+
+def _file(template, expressions, **fill) -> str:
+    lines = []
+    for name, (text, unit, _) in expressions.items():
+        lines.append(f'  {name}: {{expr: "{text}"' + (f", unit: {unit}}}" if unit else "}"))
+    text = template.replace("EXPRESSIONS", "\n".join(lines))
+    text = text.replace("NAMES", ", ".join(expressions))
+    for key, value in fill.items():
+        text = text.replace(key, str(value))
+    return text
+
+
+def mismatches(result, expressions, w) -> list:
+    """The expressions whose value, taken to SI with the factors of :data:`SI`, is not what
+    the frequency ``w`` (rad/s) makes it: w itself, the period 2 pi/w, the ratio 1 and the
+    difference 0 of one frequency read in two units."""
+    wrong = []
+    for name, (_, unit, power) in expressions.items():
+        value = float(result.values[name])
+        if result.units[name] != (unit or ""):
+            wrong.append((name, f"shown in {result.units[name]!r}, not {unit!r}"))
+            continue
+        if power is None:                               # a difference: 0
+            ok = abs(value) <= 1e-9 * w
+            expected = 0.0
+        else:
+            factor = SI.get(unit, 1.0)
+            expected = w if power == 1 else (TWO_PI / w if power == -1 else 1.0)
+            ok = math.isclose(value * factor, expected, rel_tol=1e-9)
+        if not ok:
+            wrong.append((name, f"{value} {unit or ''} is not {expected} in SI"))
+    return wrong
+
+
+def vibration_case(file_unit):
+    """A 2 kg mass on 800 N/m (w = 20 rad/s) excited at fe = 3 of the file's frequency unit;
+    expressions read the natural frequency shown in rad/s, Hz, rpm and the file's unit."""
+    exprs = _expressions(["w_rad", "w_Hz", "w_rpm", "w_file"])
+    forcing = {"Wr": ("W/w_rad", None, None), "WH": ("W/w_Hz", None, None)}
+    text = _file(VIBRATION, {**exprs, **forcing}, FILE=file_unit)
+    result = linkcli.loads(text, name="frequencies.yaml").solve()
+    w = math.sqrt(800 / 2)
+    ratio = 3 * SI[file_unit] / w                      # Omega / w, Omega = 3 file units
+    forced = [n for n in forcing if not math.isclose(float(result.values[n]), ratio,
+                                                     rel_tol=1e-9)]
+    return mismatches(result, exprs, w) + forced
+
+
+def linkage_case(file_unit, rate):
+    """A crank at ``rate`` of the file's angular-rate unit: the expressions read its rate
+    (qdot) and its rotation's (turndot), shown in rad/s, Hz, rpm and 1/s."""
+    exprs = _expressions(["qdot", "turndot"])
+    text = _file(LINKAGE, exprs, FILE=file_unit, RATE=rate)
+    result = linkcli.loads(text, name="speeds.yaml").solve()
+    return mismatches(result, exprs, rate * SI[file_unit])
+
+
+@pytest.mark.parametrize("file_unit", ["rad/s", "Hz", "rpm"])
+def test_vibration_expressions_read_one_frequency_in_every_unit(file_unit):
+    assert vibration_case(file_unit) == []
+
+
+@pytest.mark.parametrize("file_unit, rate", [("deg/s", 360), ("rpm", 120), ("rad/s", 7),
+                                             ("rev/s", 2)])
+def test_linkage_expressions_read_one_speed_in_every_unit(file_unit, rate):
+    assert linkage_case(file_unit, rate) == []
+
+
+def _counting_cycles(monkeypatch):
+    """Plant the defect: in expressions a unit that counts cycles (Hz, rpm) is taken 1:1
+    as radians (1 Hz read as 1 rad/s), as linkcli once did."""
+    from linkcli.answers.quantities import expressions
+    from linkcli.model.units import parse_unit as tables
+
+    def planted(name, expected=None):
+        found = tables(name, expected)
+        if found is not None and any(c in str(name) for c in ("Hz", "rpm", "rev/s")):
+            return found[0], found[1] / TWO_PI
+        return found
+    monkeypatch.setattr(expressions, "parse_unit", planted)
+
+
+def test_the_invariance_check_catches_frequencies_read_one_to_one(monkeypatch):
+    """With the defect planted, both the vibration and the linkage checks report it, on the
+    expressions that read or show Hz and rpm, and not on those in rad/s alone."""
+    _counting_cycles(monkeypatch)
+    wrong = dict(vibration_case("rad/s"))
+    assert {"e0_Hz", "e0_rpm", "e1_rad_s", "r0_1", "d0_1", "T1"} <= set(wrong)
+    assert not {"e0_rad_s", "e0_1_s", "r0_0", "T0"} & set(wrong)
+    moving = dict(linkage_case("rpm", 120))
+    assert {"e0_rad_s", "e1_1_s", "T0", "T1"} <= set(moving)
+
+
+def test_a_file_in_turns_per_second_shows_its_angular_accelerations():
+    """`angular_rate: rev/s` (a unit of the tables) solves: accelerations in the file's
+    deg/s^2.  A crank at 1 rev/s: its rate is 360 deg/s, shown as 1 rev/s."""
+    text = open(data("expr-rpm-linkage.yaml"), encoding="utf-8").read()
+    text = text.replace("angular_rate: deg/s", "angular_rate: rev/s").replace("rate: 360", "rate: 1")
+    text = text.replace("report:\n  position:", "report:\n  acceleration: [turnddot]\n  position:")
+    text = text.replace("quantities:\n", "quantities:\n  turn: {rotation: AB}\n")
+    result = linkcli.loads(text, name="revs.yaml").solve()
+    assert result.units["turnddot"] == "deg/s^2"
+    assert float(result.values["q_degs"]) == pytest.approx(360, rel=1e-12)

@@ -231,3 +231,56 @@ def test_a_file_in_turns_per_second_shows_its_angular_accelerations():
     result = linkcli.loads(text, name="revs.yaml").solve()
     assert result.units["turnddot"] == "deg/s^2"
     assert float(result.values["q_degs"]) == pytest.approx(360, rel=1e-12)
+
+
+# --- `unit:` on vibration answers: any unit of their dimension ------------------------------
+def test_an_amplitude_takes_a_length_unit_of_its_own():
+    """vib4_amplitude_unit_hint.yaml: 5 kg on 6000 N/m, 9 N at 1 Hz, file in m; X in mm is
+    F / (k - m Omega^2) = 9 / (6000 - 5 (2 pi)^2) m, Tn = 2 pi sqrt(5/6000) s in ms."""
+    code, out, err = run(["solve", data("vib4_amplitude_unit_hint.yaml")])
+    assert code == 0, err
+    x_mm = 1000 * 9 / (6000 - 5 * TWO_PI ** 2)
+    v = printed(out)
+    assert v["X"] == (round(x_mm, 1), "mm")
+    assert v["Tn"] == (round(1000 * TWO_PI * math.sqrt(5 / 6000), 1), "ms")
+    result = linkcli.load(data("vib4_amplitude_unit_hint.yaml")).solve()
+    assert float(result.values["X"]) == pytest.approx(x_mm, rel=1e-9)
+
+
+@pytest.mark.parametrize("unit, si", [("N kg/m", 1.0), ("N kg/mm", 1000.0), ("kg^2/s^2", 1.0)])
+def test_a_characteristic_coefficient_takes_a_unit_of_its_dimension(unit, si):
+    """vib4_characteristic_unit_refused.yaml: det(K - w^2 M) = 2 w^4 - 6000 w^2 + 3e6 in
+    SI, so c1 = -6000 N kg/m; in any unit of M^2 T^-2 it is -6000/factor (header)."""
+    text = open(data("vib4_characteristic_unit_refused.yaml"), encoding="utf-8").read()
+    text = text.replace("unit: N kg/m}", f"unit: {unit}}}")
+    result = linkcli.loads(text, name="chain.yaml").solve()
+    assert result.units["c1si"] == unit
+    assert float(result.values["c1si"]) == pytest.approx(-6000 / si, rel=1e-9)
+    code, out, err = run(["solve", data("vib4_characteristic_unit_refused.yaml")])
+    assert code == 0, err
+    assert printed(out)["c1si"] == (-6000.0, "N kg/m")
+    assert printed(out)["c1"] == (-6.0, "N kg/mm")          # the file's mm
+
+
+@pytest.mark.parametrize("file, old, new, key, fit", [
+    ("vib4_amplitude_unit_hint.yaml", "unit: mm}", "unit: N}", "quantities.X.unit",
+     "give one of m, cm, mm, km, ft, in"),
+    ("vib4_characteristic_unit_refused.yaml", "unit: N kg/m}", "unit: N/m}",
+     "quantities.c1si.unit", "give one of N kg/mm, N kg/m"),
+    ("critical-damping.yaml", "z1: {damping_ratio: 1}", "z1: {damping_ratio: 1, unit: s}",
+     "quantities.z1.unit", "give one of 1, %"),
+])
+def test_a_unit_of_another_dimension_is_refused_with_the_units_that_fit(tmp_path, file, old,
+                                                                        new, key, fit):
+    """Refused by validate and solve alike (exit 2): the file, the line, the key, both
+    dimensions, and the units that have the answer's."""
+    text = open(data(file), encoding="utf-8").read()
+    assert old in text
+    path = tmp_path / file
+    path.write_text(text.replace(old, new), encoding="utf-8")
+    line = max(i for i, row in enumerate(path.read_text().splitlines(), 1) if new in row)
+    for command in ("solve", "validate"):
+        code, out, err = run([command, path])
+        assert code == 2
+        message = out + err
+        assert f"{path}:{line}, key '{key}'" in message and fit in message

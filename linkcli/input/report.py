@@ -8,7 +8,7 @@ import re
 from linkcli.model.mechanism import (FRAME, LIMITS, VIBRATION, AnswerKey, KeyEntry, Quantity,
                                       limit_refusal, split_rate)
 from linkcli.model.mechanism import Tolerance
-from linkcli.model.units import ANGLE, FORCE, FREQUENCY, LENGTH, TORQUE
+from linkcli.model.units import ANGLE, FORCE, LENGTH, TORQUE
 from linkcli.input.derived import EXPR
 from linkcli.input.oscillation import OSCILLATION
 
@@ -505,27 +505,24 @@ class AnswersSection:
         value = self.mapping(value, path, set(VIBRATION) - set(OSCILLATION) | {"unit", "time"})
         kind, where, arg = self.one_kind(value, path, VIBRATION)
         coords = self.vibration.get("coordinates", [])
-        unit = value.get("unit")
-        if unit is not None and not isinstance(unit, str):
-            raise self.error(path + ("unit",), f"unit is a unit name, got {unit!r}")
-        if unit is not None:
-            if kind not in ("natural_frequency", "damped_frequency", "forcing_frequency"):
-                raise self.error(path + ("unit",), f"{kind} is given in fixed units",
-                                 hint="'unit' is for frequencies: rad/s, Hz or rpm")
-            if unit not in FREQUENCY:
-                raise self.error(path + ("unit",), f"unknown frequency unit {unit!r}",
-                                 hint="use one of " + ", ".join(FREQUENCY))
+        unit = self.answer_unit(value, path)        # its dimension: answer_units
         if "time" in value and kind != "free_response":
             raise self.error(path + ("time",), "'time' is for free_response")
         if not coords:
             raise self.error(path, f"{kind} needs a vibration problem: declare its "
                              "coordinates under 'coordinates:'")
+        quantity = self.vibration_kind(name, kind, value, path, where, arg, pool)
+        return dataclasses.replace(quantity, unit=unit, line=self.doc.line(path))
+
+    def vibration_kind(self, name, kind, value, path, where, arg, pool) -> Quantity:
+        """The quantity of ``kind`` (a key of :data:`VIBRATION`) with its argument ``arg``."""
+        coords = self.vibration["coordinates"]
         if kind in ("natural_frequency", "damped_frequency", "damping_ratio"):
-            return Quantity(name, kind, str(self.mode(arg, where, len(coords))), unit=unit)
+            return Quantity(name, kind, str(self.mode(arg, where, len(coords))))
         if kind == "forcing_frequency":
             if arg is not True:
                 raise self.error(where, "write 'forcing_frequency: true'")
-            return Quantity(name, kind, unit=unit)
+            return Quantity(name, kind)
         if kind == "mode_shape":
             if not isinstance(arg, list) or len(arg) != 2:
                 raise self.error(where, "a mode shape component is [mode, coordinate]")

@@ -276,18 +276,19 @@ def unit_dimension(name: str):
 
 def show(units, dim, kind=None, unit=None) -> tuple[str, float]:
     """(unit name, SI factor) of a value of dimension ``dim`` in the file's units: the
-    quantity's own ``unit`` when it names one; else the file's unit of ``kind`` (or of the
+    quantity's own ``unit`` when it names one (any unit :func:`parse_unit` reads whose
+    dimension agrees with ``dim``, angles aside: N kg/m for M^2 T^-2, 1/s for rad/s); else the file's unit of ``kind`` (or of the
     kind the dimension is shown as); else a product of the file's named units (a force, a
     length, a mass, a time, an angle) with the fewest factors, written as ``N/rad``,
     ``kg mm``, ``mm/deg``; a pure number has no unit."""
     if unit is not None:
-        named = unit_dimension(unit)
+        named = parse_unit(unit, dim)
         if kind is not None and unit in KINDS[kind]:
-            named = (kind, DIMENSIONS[kind], KINDS[kind][unit])
-        if named is None or named[1] != dim:
+            named = (DIMENSIONS[kind], KINDS[kind][unit])
+        if named is None or not named[0].agrees(dim):
             raise InputError(f"unit '{unit}' is not a unit of {dim.text()}",
-                             hint="give a unit of the quantity's own kind")
-        return unit, named[2]
+                             hint="give one of " + ", ".join(fitting(units, dim)))
+        return unit, named[1]
     if kind is not None and DIMENSIONS[kind] == dim:
         return units.names[kind], units.factor(kind)
     named = SHOWN_AS.get(dim)
@@ -327,6 +328,23 @@ def _composed(units, dim) -> tuple[str, float]:
     if down:
         text += "/" + (down[0] if len(down) == 1 else "(" + " ".join(down) + ")")
     return text, factor
+
+
+def fitting(units, dim) -> list:
+    """The names of the units of dimension ``dim``: those of the tables and of energy and
+    power that have it; else the file's product of units for it, the same product in SI
+    ('N kg/mm', 'N kg/m') and the units that have it angles aside ('mm/deg', 'mm/rad',
+    'mm' ...); '1' and '%' for a pure number."""
+    if dim.none and not dim.angle:
+        return list(RATIOS)[1:]
+    named = [(name, DIMENSIONS[kind]) for kind, table in KINDS.items() for name in table]
+    named += [(name, d) for name, (d, _) in _GLUED.items()]
+    exact = list(dict.fromkeys(name for name, d in named if d == dim))
+    if exact:
+        return exact
+    si = Units({"length": "m", "force": "N", "mass": "kg", "time": "s", "angle": "rad"})
+    names = [_composed(units, dim)[0], _composed(si, dim)[0]]
+    return list(dict.fromkeys(names + [name for name, d in named if d.agrees(dim)]))
 
 
 #: units written glued (N s, N m s) and the units of energy and power

@@ -284,3 +284,31 @@ def test_a_unit_of_another_dimension_is_refused_with_the_units_that_fit(tmp_path
         assert code == 2
         message = out + err
         assert f"{path}:{line}, key '{key}'" in message and fit in message
+
+
+# --- rates of a quantity whose name ends in 'd' -----------------------------------------------
+def test_the_rate_of_a_quantity_named_wd():
+    """rate_name_ending_d.yaml: 'wddot' is the rate of 'wd' (no quantity 'w'): 10 rad/s."""
+    code, out, err = run(["solve", data("rate_name_ending_d.yaml")])
+    assert code == 0, err
+    assert printed(out)["wddot"] == (10.0, "rad/s")
+
+
+def test_rates_of_names_ending_in_d_everywhere():
+    """'yd' = y of A on a unit crank at 30 deg, 10 rad/s, 2 rad/s^2: yddot = cos(q) w,
+    ydddot = -sin(q) w^2 + cos(q) alpha, read by the report, an expression, a sweep."""
+    text = open(data("rate_name_ending_d.yaml"), encoding="utf-8").read()
+    text = text.replace("value: 0, rate: 10}", "value: 30, rate: 10, accel: 2}")
+    text = text.replace("  wd: {rotation: crank}\n", "  wd: {rotation: crank}\n  yd: {y: A}\n"
+                        '  e: {expr: "yddot/wddot", unit: m}\n')
+    text = text.replace("  velocity: [wddot]", "  velocity: [wddot, yddot, e, edot]\n"
+                        "  acceleration: [wdddot, ydddot]")
+    result = linkcli.loads(text, name="rates.yaml").solve()
+    v = {n: float(x) for n, x in result.values.items()}
+    q, w, alpha = math.radians(30), 10.0, 2.0
+    assert v["wddot"] == pytest.approx(w) and v["wdddot"] == pytest.approx(alpha)
+    assert v["yddot"] == pytest.approx(math.cos(q) * w, rel=1e-9)
+    assert v["ydddot"] == pytest.approx(-math.sin(q) * w * w + math.cos(q) * alpha, rel=1e-9)
+    assert v["e"] == pytest.approx(math.cos(q), rel=1e-9)
+    # d/dt (cos(q) w / w) = -sin(q) w, the chain rule through both rates
+    assert v["edot"] == pytest.approx(-math.sin(q) * w, rel=1e-9)

@@ -184,7 +184,7 @@ class AnswersSection:
         """Whether the quantity a limit is of is defined and has a rate (its definition's
         own error is reported already when it failed)."""
         path = ("quantities", q.name, q.kind)
-        base, order = split_rate(q.a)
+        base, order = split_rate(q.a, quantities)
         if base in self.failed:
             return False
         if base not in quantities:
@@ -597,7 +597,7 @@ class AnswersSection:
             return False            # its definition's error is reported already
         order = {"position": 0, "velocity": 1, "acceleration": 2, "statics": 0,
                  "vibration": 0}[section]
-        base = split_rate(name)
+        base = split_rate(name, quantities)
         if base[0] in quantities and quantities[base[0]].kind == "design":
             raise self.error(path, f"'{name}' is an unknown of 'find': it is listed in the "
                              "report's Design section by itself", hint="remove it from here")
@@ -726,7 +726,7 @@ class AnswersSection:
         line = self.doc.line(path)
         is_point = name in pool and (isinstance(printed, list) or name not in quantities)
         if not is_point:
-            base = split_rate(name)
+            base = split_rate(name, quantities)
             if base is None or base[0] not in quantities:
                 raise self.error(path, f"the key names '{name}', which the file does not define",
                                  hint="define it under 'quantities' or fix the name")

@@ -37,7 +37,7 @@ def base_dimension(base: str) -> Dimension:
 def dimension(mech, name: str) -> Dimension:
     """The dimension of the answer ``name`` (a quantity, its rate, a point's coordinate, a
     load, a solved design parameter) of ``mech``; KeyError for a name it does not define."""
-    base, order = split_rate(name)
+    base, order = split_rate(name, mech.quantities)
     quantity = mech.quantities[base]
     return of_quantity(mech, quantity) / TIME_DIM ** order
 

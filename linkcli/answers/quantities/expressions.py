@@ -33,13 +33,14 @@ SUFFIX = ("", "dot", "ddot")
 
 def is_expression(mech, name) -> bool:
     """Whether ``name`` is an expression quantity or one of its rates."""
-    q = mech.quantities.get(split_rate(name)[0])
+    q = mech.quantities.get(split_rate(name, mech.quantities)[0])
     return q is not None and q.kind == EXPR
 
 
-def rate_name(name: str, order: int) -> str:
-    """The name of the rate of ``order`` of the answer ``name`` (itself a rate, perhaps)."""
-    base, level = split_rate(name)
+def rate_name(name: str, order: int, names=()) -> str:
+    """The name of the rate of ``order`` of the answer ``name`` (itself a rate, perhaps; of
+    one of ``names``, the quantities: model.mechanism.split_rate)."""
+    base, level = split_rate(name, names)
     return base + SUFFIX[level + order]
 
 
@@ -49,21 +50,21 @@ def expand(mech, names) -> tuple[list, list]:
     solve, exprs = [], {}
 
     def need(name, order):
-        base, level = split_rate(name)
+        base, level = split_rate(name, mech.quantities)
         quantity = mech.quantities.get(base)
         if quantity is not None and quantity.kind == EXPR:
             order += level
             if order <= exprs.get(base, -1):
                 return
             for used in Expression(quantity.a).names:
-                if split_rate(used)[0] in mech.quantities:
+                if split_rate(used, mech.quantities)[0] in mech.quantities:
                     need(used, order)
             exprs.pop(base, None)          # after the ones it reads
             exprs[base] = order
             return
         if quantity is None and name in mech.params:
             return
-        solve.extend(rate_name(name, i) for i in range(order + 1))
+        solve.extend(rate_name(name, i, mech.quantities) for i in range(order + 1))
 
     for name in names:
         need(name, 0)
@@ -119,13 +120,13 @@ def rate_unit(unit: str, level: int) -> str:
 
 def _bound(mech, result, own, used, order):
     """The value (SI) a name read by an expression is bound to, with ``order`` rates."""
-    base, level = split_rate(used)
+    base, level = split_rate(used, mech.quantities)
     if base in own and not level:
         value = own[base]
         return value if order == 0 or not isinstance(value, Rates) else \
             Rates(value.terms[:order + 1])
     if base in mech.quantities:
-        terms = [in_si(mech, result, rate_name(used, i)) for i in range(order + 1)]
+        terms = [in_si(mech, result, rate_name(used, i, mech.quantities)) for i in range(order + 1)]
         return terms[0] if order == 0 else Rates(terms)
     if used == "k":
         return float(mech.k)

@@ -91,7 +91,7 @@ def angle_period(mech, name: str, unit: str) -> float | None:
     """The turn (360 in deg, 2 pi in rad) of a quantity that is an angle, compared and
     plotted modulo a turn: an angle, a rotation, the angle between two vectors or an angle
     driver (not their rates); None for any other quantity."""
-    base, order = split_rate(name)
+    base, order = split_rate(name, mech.quantities)
     quantity = mech.quantities[base]
     is_angle = quantity.angular or (quantity.kind == "q" and mech.driver is not None
                                     and mech.driver.kind == "angle")

@@ -114,7 +114,7 @@ def analyse(mech) -> Analysis:
 def evaluate(mech, names, result):
     """Fill ``result`` (values, units) with ``names`` of a vibration problem."""
     for name in names:
-        base, order = split_rate(name)
+        base, order = split_rate(name, mech.quantities)
         if order and name not in mech.quantities:
             raise InputError(f"'{name}': a vibration problem has no driver rates",
                              file=mech.file, key="report",

@@ -312,3 +312,40 @@ def test_rates_of_names_ending_in_d_everywhere():
     assert v["e"] == pytest.approx(math.cos(q), rel=1e-9)
     # d/dt (cos(q) w / w) = -sin(q) w, the chain rule through both rates
     assert v["edot"] == pytest.approx(-math.sin(q) * w, rel=1e-9)
+
+
+# --- a design unknown written as the driver's rate ----------------------------------------
+def test_find_the_drivers_acceleration_in_a_unit_of_its_own():
+    """find_unit_driver_accel.yaml: a 2 kg block pushed by 10 N moves freely at
+    a = F/m = 5 m/s^2; the unknown takes `unit:` and is printed in the file's m/s^2."""
+    code, out, err = run(["solve", data("find_unit_driver_accel.yaml")])
+    assert code == 0, err
+    assert printed(out)["a"] == (5.0, "m/s^2")
+    text = open(data("find_unit_driver_accel.yaml"), encoding="utf-8").read()
+    for interval, unit in (("[-50, 50]", "m/s^2"), ("[-50000, 50000]", "mm/s^2"),
+                           ("[-50, 50]", None)):
+        changed = text.replace("{between: [-50, 50], unit: m/s^2}",
+                               f"{{between: {interval}" + (f", unit: {unit}}}" if unit else "}"))
+        result = linkcli.loads(changed, name="accel.yaml").solve()
+        assert float(result.values["a"]) == pytest.approx(10 / 2, rel=1e-9)
+        assert result.units["a"] == "m/s^2"
+
+
+def test_a_drivers_rate_written_as_a_parameter_has_the_drivers_unit():
+    """A crank's rate n = 30 rpm written as a parameter: an expression reads it in rad/s
+    (30 x 2 pi/60 = pi), and a find: of it in rad/s gives 30 rpm back."""
+    text = open(data("expr-rpm-linkage.yaml"), encoding="utf-8").read()
+    text = text.replace("angular_rate: deg/s}", "angular_rate: rpm}")
+    text = text.replace("params: {a: 1, b: sqrt(2)}", "params: {a: 1, b: sqrt(2), n: 30}")
+    text = text.replace("rate: 360", "rate: n")
+    text = text.replace("  q_Hz: {expr: \"qdot\", unit: Hz}",
+                        "  q_Hz: {expr: \"qdot\", unit: Hz}\n  wn: {expr: \"n\", unit: rad/s}")
+    text = text.replace("q_rpm, q_Hz]", "q_rpm, q_Hz, wn]")
+    result = linkcli.loads(text, name="n.yaml").solve()
+    assert float(result.values["wn"]) == pytest.approx(math.pi, rel=1e-12)
+    assert float(result.values["q_Hz"]) == pytest.approx(0.5, rel=1e-12)
+    found = text.replace("report:", "find:\n  unknowns: {n: {between: [1, 10], unit: rad/s}}\n"
+                         "  targets: {q_Hz: 0.5 Hz}\nreport:")
+    result = linkcli.loads(found, name="n.yaml").solve()
+    assert result.units["n"] == "rpm"
+    assert float(result.values["n"]) == pytest.approx(30, rel=1e-9)

@@ -349,3 +349,29 @@ def test_a_drivers_rate_written_as_a_parameter_has_the_drivers_unit():
     result = linkcli.loads(found, name="n.yaml").solve()
     assert result.units["n"] == "rpm"
     assert float(result.values["n"]) == pytest.approx(30, rel=1e-9)
+
+
+# --- advice that fits the file -------------------------------------------------------------
+def test_a_tension_in_a_vibration_file_is_refused_with_advice_that_fits_it(tmp_path):
+    """vib4_tension_in_vibration_file.yaml: the file has coordinates and no driver, so the
+    refusal (exit 2, validate and solve, with its line) names neither a driver's load nor
+    an unknown to give, and its advice is followed: the spring's force at the equilibrium
+    is k x0 = 20 g - 4 g = 156.96 N (header: 196.2 N = 4 g + k x0)."""
+    path = data("vib4_tension_in_vibration_file.yaml")
+    line = next(i for i, row in enumerate(open(path, encoding="utf-8"), 1)
+                if row.startswith("  statics:"))
+    for command in ("validate", "solve"):
+        code, out, err = run([command, path])
+        message = out + err
+        assert code == 2
+        assert f"{path}:{line}, key 'report.statics[0]': 'T1' is a tension" in message
+        assert "vibration problem" in message and "spring_force: ks" in message
+        assert "driver's" not in message and "value 'unknown'" not in message
+    text = open(path, encoding="utf-8").read().replace(
+        "  T1: {tension: left}\n  T2: {tension: right}\n", "  Nk: {spring_force: ks}\n")
+    text = text.replace("  statics: [T1, T2]\n", "").replace("vibration: [x0]",
+                                                             "vibration: [x0, Nk]")
+    fixed = tmp_path / "advice.yaml"
+    fixed.write_text(text, encoding="utf-8")
+    result = linkcli.load(str(fixed)).solve()
+    assert float(result.values["Nk"]) == pytest.approx((20 - 4) * 9.81, rel=1e-6)

@@ -613,6 +613,7 @@ class AnswersSection:
             return True
         if section == "statics":
             if name in quantities and quantities[name].kind in FORCES:
+                self.balanced(name, quantities[name], path)
                 return True
             if name not in quantities or quantities[name].kind != "load":
                 raise self.error(path, f"'{name}' is not a load", hint="statics lists loads")
@@ -640,6 +641,22 @@ class AnswersSection:
                              f"{' rate' if base[1] else ''} is listed under " +
                              " or ".join(f"'{kinematic[o]}'" for o in sorted(allowed)))
         return True
+
+    def balanced(self, name, quantity, path) -> None:
+        """Refuse a joint force in a vibration problem (a file that declares coordinates):
+        statics finds it with the unknown load that balances the others, and such a file
+        has none; the advice names what it has (its springs' forces at the equilibrium)."""
+        if "coordinates" not in self.doc.data or quantity.kind == "load":
+            return
+        springs = sorted(self.vibration["springs"])
+        hint = "remove it from 'statics'"
+        if springs:
+            hint += f"; the forces at the equilibrium it solves are its springs' " \
+                f"(spring_force: {springs[0]}, under 'vibration')"
+        raise self.error(path, f"'{name}' is {_kind_text(quantity.kind)}, which statics "
+                         "finds with the unknown load that balances the others, and a "
+                         "vibration problem (coordinates, no driver) has no unknown load, so "
+                         "its joint forces are not solved", hint=hint)
 
     def rate_of(self, name, quantity, order, path):
         """Refuse a rate the quantity has not (a speed has one, an acceleration none)."""

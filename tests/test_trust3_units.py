@@ -375,3 +375,44 @@ def test_a_tension_in_a_vibration_file_is_refused_with_advice_that_fits_it(tmp_p
     fixed.write_text(text, encoding="utf-8")
     result = linkcli.load(str(fixed)).solve()
     assert float(result.values["Nk"]) == pytest.approx((20 - 4) * 9.81, rel=1e-6)
+
+
+# --- critical damping is a case of its own ---------------------------------------------------
+def test_critical_damping_is_not_called_overdamped():
+    """critical-damping.yaml: m = 1, k = 1, c = 2: zeta = c / (2 sqrt(k m)) = 1, the double
+    root s = -1 1/s: critically damped (exit 3 for its damped frequency, at its line)."""
+    path = data("critical-damping.yaml")
+    code, out, err = run(["solve", path])
+    assert code == 3
+    assert f"{path}:16, key 'quantities.wd1': 'wd1': mode 1 is critically damped (zeta = 1)" \
+        in err and "decay rate 1 1/s" in err
+    assert "overdamped" not in err
+    text = open(path, encoding="utf-8").read().replace("[w1, z1, wd1]", "[w1, z1]")
+    result = linkcli.loads(text, name="critical.yaml").solve()
+    assert float(result.values["w1"]) == pytest.approx(1, rel=1e-12)
+    assert round(float(result.values["z1"]), 6) == 1.0
+    code, out, _ = run(["explain", path])
+    assert "zeta = 1, critically damped: decay rate 1 1/s" in out and "overdamped" not in out
+
+
+@pytest.mark.parametrize("ks, cc, case", [
+    (3, "2*sqrt(3)", "critically damped"),            # zeta = 1 to the rounding of sqrt(3)
+    (1, 2.0002, "overdamped"),                        # zeta = 1.0001
+    (1, 1.9998, None),                                # zeta = 0.9999: it oscillates
+])
+def test_critical_damping_is_decided_with_a_dimensionless_tolerance(ks, cc, case):
+    """Near zeta = 1 the mode is critically damped only within the rounding of a double
+    root; a damping ratio 1e-4 away is overdamped, or oscillates at
+    omega_d = omega_n sqrt(1 - zeta^2)."""
+    text = open(data("critical-damping.yaml"), encoding="utf-8").read()
+    text = text.replace("params: {m: 1, ks: 1, cc: 2}", f"params: {{m: 1, ks: {ks}, cc: {cc}}}")
+    linkage = linkcli.loads(text, name="near.yaml")
+    if case is None:
+        zeta = 1.9998 / 2
+        values = linkage.solve().values
+        assert float(values["wd1"]) == pytest.approx(math.sqrt(1 - zeta ** 2), rel=1e-6)
+        return
+    with pytest.raises(linkcli.LinkcliError) as caught:
+        linkage.solve()
+    assert f"is {case}" in str(caught.value)
+    assert caught.value.reason == case

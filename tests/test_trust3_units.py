@@ -416,3 +416,33 @@ def test_critical_damping_is_decided_with_a_dimensionless_tolerance(ks, cc, case
         linkage.solve()
     assert f"is {case}" in str(caught.value)
     assert caught.value.reason == case
+
+
+# --- a largest value reached at the start --------------------------------------------------
+def test_explain_says_reached_for_a_largest_value_at_the_start():
+    """vib4_largest_reached_said_approached.yaml: released from rest at th1 = 2 deg, th2 = 0,
+    th1(t) = 1 deg (cos w1 t + cos w2 t) is largest, 2 deg, at t = 0; the spring's force
+    k L (th1 - th2) = 1.5 x 0.3 x 2 deg cos(w2 t) is mode 2 alone: both reached."""
+    path = data("vib4_largest_reached_said_approached.yaml")
+    code, out, err = run(["solve", path])
+    assert code == 0, err
+    v = printed(out)
+    assert v["th1m"] == (2.0, "deg")
+    assert v["Nk"] == (round(1.5 * 0.3 * math.radians(2), 6), "N")
+    code, out, err = run(["explain", path])
+    assert code == 0, err
+    assert f"  th1m: {math.radians(2):.6g} (SI; reached)" in out
+    assert f"  Nk: {1.5 * 0.3 * math.radians(2):.6g} (SI; reached)" in out
+    assert "(SI; approached" not in out
+
+
+def test_a_start_out_of_phase_is_still_only_approached():
+    """Released at th1 = 2 deg with a rate: the modes do not start in phase, and their
+    frequencies (sqrt(g/L) and sqrt(g/L + 2 k/m)) are incommensurate: approached."""
+    text = open(data("vib4_largest_reached_said_approached.yaml"), encoding="utf-8").read()
+    text = text.replace("th1_dot: 0, th2: 0", "th1_dot: 5, th2: 0")
+    linkage = linkcli.loads(text, name="phase.yaml")
+    from linkcli.answers.quantities import oscillation, vibration
+    analysis = vibration.analyse(linkage.model)
+    found = oscillation.largest(analysis, linkage.model.quantities["th1m"])
+    assert not found.reached and found.time is None

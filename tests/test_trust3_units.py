@@ -225,7 +225,8 @@ def test_a_file_in_turns_per_second_shows_its_angular_accelerations():
     """`angular_rate: rev/s` (a unit of the tables) solves: accelerations in the file's
     deg/s^2.  A crank at 1 rev/s: its rate is 360 deg/s, shown as 1 rev/s."""
     text = open(data("expr-rpm-linkage.yaml"), encoding="utf-8").read()
-    text = text.replace("angular_rate: deg/s", "angular_rate: rev/s").replace("rate: 360", "rate: 1")
+    text = text.replace("angular_rate: deg/s", "angular_rate: rev/s")
+    text = text.replace("rate: 360", "rate: 1")
     text = text.replace("report:\n  position:", "report:\n  acceleration: [turnddot]\n  position:")
     text = text.replace("quantities:\n", "quantities:\n  turn: {rotation: AB}\n")
     result = linkcli.loads(text, name="revs.yaml").solve()
@@ -506,3 +507,43 @@ def test_the_vibrations_page_tables_render_as_tables(tmp_path):
 def test_every_docs_table_renders_as_a_table(page):
     if page.endswith(".md"):
         assert table_problems(os.path.join(ROOT, "docs", page)) == []
+
+
+def _design(target: str) -> float:
+    """The stiffness ks (N/m) that the target gives the 2 kg mass of :data:`VIBRATION`."""
+    exprs = _expressions(["w_rad", "w_Hz", "w_rpm"])
+    text = _file(VIBRATION, exprs, FILE="rad/s").replace(
+        "report:", f"find:\n  unknowns: {{ks: {{between: [10, 100000]}}}}\n  targets: "
+        f"{{{target}}}\nreport:")
+    return float(linkcli.loads(text, name="target.yaml").solve().values["ks"])
+
+
+@pytest.mark.parametrize("target", [
+    "w_rad: 3 Hz", "w_Hz: 3", "w_Hz: 180 rpm", "e0_Hz: 3", "e1_rpm: 180",
+    "e2_rad_s: 18.8495559215 rad/s", "e0_1_s: 3 Hz", "T1: 0.333333333333 s", "e2_Hz: 180 rpm",
+])
+def test_find_targets_on_expressions_read_one_frequency_in_every_unit(target):
+    """3 Hz = 180 rpm = 6 pi rad/s: every target, on a frequency or an expression of it shown
+    in any unit and given in any unit, gives ks = m (6 pi)^2 (m = 2 kg)."""
+    expected = 2 * (3 * TWO_PI) ** 2
+    assert _design(target) == pytest.approx(expected, rel=1e-8)
+
+
+def test_keys_of_expressions_in_every_unit(tmp_path):
+    """`check` passes keys written in each unit from the factors of this test (w = 20 rad/s,
+    its period 2 pi/20 s) and fails one written 1:1 in rad/s."""
+    exprs = _expressions(["w_rad", "w_Hz", "w_rpm"])
+    text = _file(VIBRATION, exprs, FILE="rad/s")
+    w = 20.0
+    values = {n: round(w / SI[u], 4) for n, (_, u, p) in exprs.items() if p == 1}
+    values.update({n: round(TWO_PI / w, 4) for n, (_, u, p) in exprs.items() if p == -1})
+    keys = "keys:\n  - values: {" + ", ".join(f"{n}: {v}" for n, v in values.items()) + "}\n"
+    path = tmp_path / "keys.yaml"
+    path.write_text(text + "  decimals: 4\n" + keys, encoding="utf-8")
+    code, out, err = run(["check", path])
+    assert code == 0, out + err
+    wrong = dict(values, e0_Hz=w)                            # 20 rad/s read as 20 Hz
+    keys = "keys:\n  - values: {" + ", ".join(f"{n}: {v}" for n, v in wrong.items()) + "}\n"
+    path.write_text(text + "  decimals: 4\n" + keys, encoding="utf-8")
+    code, out, err = run(["check", path])
+    assert code == 1 and "e0_Hz" in out + err

@@ -277,10 +277,10 @@ def unit_dimension(name: str):
 def show(units, dim, kind=None, unit=None) -> tuple[str, float]:
     """(unit name, SI factor) of a value of dimension ``dim`` in the file's units: the
     quantity's own ``unit`` when it names one (any unit :func:`parse_unit` reads whose
-    dimension agrees with ``dim``, angles aside: N kg/m for M^2 T^-2, 1/s for rad/s); else the file's unit of ``kind`` (or of the
-    kind the dimension is shown as); else a product of the file's named units (a force, a
-    length, a mass, a time, an angle) with the fewest factors, written as ``N/rad``,
-    ``kg mm``, ``mm/deg``; a pure number has no unit."""
+    dimension agrees with ``dim``, angles aside: N kg/m for M^2 T^-2, 1/s for rad/s); else
+    the file's unit of ``kind`` (or of the kind the dimension is shown as); else a product
+    of the file's named units (a force, a length, a mass, a time, an angle) with the fewest
+    factors, written as ``N/rad``, ``kg mm``, ``mm/deg``; a pure number has no unit."""
     if unit is not None:
         named = parse_unit(unit, dim)
         if kind is not None and unit in KINDS[kind]:

@@ -19,8 +19,8 @@ from linkcli.model.units import FORCE
 def loads_at(mech, solver, kin, names, context=None):
     """SI values of every load, solving the unknown one when a load is asked for (with
     losses, from the joint forces of ``context``, solved once for every answer)."""
-    wanted = any(mech.quantities.get(split_rate(n, mech.quantities)[0]) is not None
-                 and mech.quantities[split_rate(n, mech.quantities)[0]].kind == "load" for n in names)
+    bases = [mech.quantities.get(split_rate(n, mech.quantities)[0]) for n in names]
+    wanted = any(q is not None and q.kind == "load" for q in bases)
     if not wanted:
         return {}
     values = {n: load.value for n, load in mech.loads.items()}

@@ -330,7 +330,8 @@ def _require_stiffness(analysis, quantity, k, what) -> None:
     raise ModeError(f"'{quantity.name}': mode {k + 1} has no stiffness (natural frequency 0: "
                     f"no spring or gravity holds it at the equilibrium), so {what} is "
                     f"undefined; its roots are s = {roots} {unit}", file=analysis.mech.file,
-                    key=f"quantities.{quantity.name}", line=quantity.line, mode=k + 1, reason="no stiffness", values=analysis.damped().decay(k),
+                    key=f"quantities.{quantity.name}", line=quantity.line, mode=k + 1,
+                    reason="no stiffness", values=analysis.damped().decay(k),
                     hint="add a spring or gravity that holds the mode, or ask only for its "
                     "natural frequency")
 
@@ -351,7 +352,8 @@ def _mode_shape(analysis, quantity) -> float:
         raise ModeError(f"'{quantity.name}': modes {others} share the natural frequency "
                         f"{number:.6g} {unit}, so their shapes are any combination of theirs: "
                         "a component of one of them is not defined", file=mech.file,
-                        key=f"quantities.{quantity.name}", line=quantity.line, mode=k + 1, reason="repeated", values=(found.omega[k],),
+                        key=f"quantities.{quantity.name}", line=quantity.line, mode=k + 1,
+                        reason="repeated", values=(found.omega[k],),
                         hint="make a mass or a spring slightly different to break the "
                         "symmetry, or ask for the frequency only")
     if not found.moves(ref, k):

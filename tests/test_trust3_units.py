@@ -547,3 +547,30 @@ def test_keys_of_expressions_in_every_unit(tmp_path):
     path.write_text(text + "  decimals: 4\n" + keys, encoding="utf-8")
     code, out, err = run(["check", path])
     assert code == 1 and "e0_Hz" in out + err
+
+
+def test_a_known_load_in_a_vibration_file_is_its_value():
+    """A 5 N force on a 2 kg mass on a 100 N/m spring (free at the figure's 0.3 m, no
+    gravity), listed under statics: its value (it was refused with advice to make the
+    driver's load unknown); the equilibrium moves by F/k = 0.05 m."""
+    text = """title: "mass on a spring with a constant force"
+units: {length: m, angle: deg, stiffness: N/m}
+frame: {B: [0, 0]}
+points: {P: [0, 0.3]}
+sliders: {body: {point: P, guide: {x: 0}}}
+coordinates: {y: {y: P}}
+springs: {s: {between: [B, P], k: 100}}
+loads:
+  F: {type: force, at: P, y: 5}
+dynamics: {masses: {P: 2}}
+quantities:
+  y0: {equilibrium: y}
+report:
+  statics: [F]
+  vibration: [y0]
+  decimals: 4
+"""
+    code, out, err = run(["solve", "-"], stdin=text)
+    assert code == 0, err
+    v = printed(out)
+    assert v["F"] == (5.0, "N") and v["y0"] == (round(0.3 + 5 / 100, 4), "m")

@@ -116,8 +116,9 @@ report:
 
 
 def _expressions(sources) -> dict:
-    """{name: (expression, unit, what it is in SI as a multiple of the frequency w)}: each
-    source shown in every unit of :data:`SHOWN`, its period, and its ratio to the others."""
+    """{name: (expression, unit, what it is)}: each source shown in every unit of
+    :data:`SHOWN` (1: the frequency w itself), its period (-1: 2 pi/w), its ratio to each
+    source (0: the number 1) and its difference from each (None: 0 rad/s)."""
     out = {}
     for i, src in enumerate(sources):
         for unit in SHOWN:

@@ -1,4 +1,4 @@
-"""A sweep over a coefficient solved all at once (answers.coefficients) gives the answers of
+"""A sweep over a coefficient solved all at once (runs.coefficients) gives the answers of
 the file solved again at each value, and steps aside where it does not apply."""
 from __future__ import annotations
 
@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 import linkcli
-from linkcli.answers import coefficients
-from linkcli.answers.sheet import evaluate
+from linkcli.runs import coefficients
+from linkcli.runs.sheet import evaluate
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 

@@ -11,8 +11,8 @@ import pytest
 
 import linkcli
 from linkcli.errors import DesignError
-from linkcli.answers.design import solve
-from linkcli.answers.sheet import evaluate
+from linkcli.runs.design import solve
+from linkcli.runs.sheet import evaluate
 
 from cli_helpers import run
 from closure import SEED000_CRANK_SLIDER

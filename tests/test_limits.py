@@ -1,4 +1,4 @@
-"""Limit positions and extremes (answers.limits), against closed forms computed here.
+"""Limit positions and extremes (runs.limits), against closed forms computed here.
 
 Crank-slider dead centres: crank and rod aligned, |OB| = l + r and l - r; an offset
 slider's stroke sqrt((l + r)^2 - e^2) - sqrt((l - r)^2 - e^2) and its time ratio from the
@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 
 import linkcli
-from linkcli.answers import limits
-from linkcli.answers.check import check_file
+from linkcli.runs import limits
+from linkcli.runs.check import check_file
 from linkcli.cli import main
 from linkcli.errors import InputError, SolveError
 

@@ -72,7 +72,7 @@ class Reader:
         #: parameters given other values than the file's (input.document.build)
         self.overrides: dict = {}
         #: path -> (text, unit kind) of every value written as an expression: what depends
-        #: on the parameters (answers.coefficients evaluates them over arrays)
+        #: on the parameters (runs.coefficients evaluates them over arrays)
         self.written: dict = {}
 
     def error(self, path, detail: str, hint: str | None = None):

@@ -148,7 +148,7 @@ class AnswersSection:
         return quantities
 
     def limit_quantity(self, name, value, path) -> Quantity:
-        """A limit of the motion of a quantity over a range of the driver (answers.limits):
+        """A limit of the motion of a quantity over a range of the driver (runs.limits):
         {maximum: NAME}, minimum, at_maximum, at_minimum, stroke, time_ratio, or
         {stroke_time: NAME, component: working | return}; from: and to: give the range."""
         value = self.mapping(value, path, set(LIMITS) | {"component", "from", "to"})

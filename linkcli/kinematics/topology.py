@@ -170,22 +170,37 @@ def grubler(mech: Mechanism) -> Grubler:
     return Grubler(bodies, revolutes, prismatics, list(mech.rolling))
 
 
+#: what to do with a mechanism of several inputs, which one 'driver:' cannot move
+SEVERAL_DRIVERS = ("one driver is supported, not several: hold all inputs but one (their "
+                   "points in 'frame:', what rolls on them rolling on the frame) and solve "
+                   "once per input; the velocities add, being linear in the input rates")
+
+
 def one_dof(mech: Mechanism) -> Grubler:
     """Grübler's count, refusing a mechanism whose mobility is not its number of coordinates
     (1 for a file with a ``driver:``)."""
     count = grubler(mech)
     n = len(mech.coordinates)
-    if count.dof != n:
-        declared = "1" if n == 1 else \
-            f"{n} (the coordinates {', '.join(c.name for c in mech.coordinates)})"
-        raise MobilityError(
-            f"the mechanism has {count.dof} degrees of freedom, not {declared}: "
-            f"{count.formula()}", file=mech.file,
-            hint="check that every link, slider and actuator is listed and that pins shared "
-            "by several bodies name the same point" + (
-                "; a mechanism with several degrees of freedom declares one coordinate each "
-                "under 'coordinates:'" if count.dof > n else ""))
-    return count
+    if count.dof == n:
+        return count
+    driven = mech.elements is None          # a file with a 'driver:', not 'coordinates:'
+    declared = f"1 (the one driver, {driver_text(mech.driver)})" if driven else "1" if n == 1 \
+        else f"{n} (the coordinates {', '.join(c.name for c in mech.coordinates)})"
+    hint = "check that every link, slider and actuator is listed and that pins shared by " \
+        "several bodies name the same point"
+    if count.dof > n and driven:
+        hint += f"; if the mechanism has {count.dof} inputs: {SEVERAL_DRIVERS}"
+    elif count.dof > n:
+        hint += "; a vibration problem declares one coordinate per degree of freedom under " \
+            "'coordinates:'"
+    raise MobilityError(f"the mechanism has {count.dof} degrees of freedom, not {declared}: "
+                        f"{count.formula()}", file=mech.file, hint=hint)
+
+
+def driver_text(d) -> str:
+    """The driver (or a coordinate) in words: 'angle of A->B', 'length AB', 'x of B'."""
+    return {"angle": f"angle of {d.a}->{d.b}", "length": f"length {d.a}{d.b}",
+            "x": f"x of {d.a}", "y": f"y of {d.a}"}[d.kind]
 
 
 def analyse(mech: Mechanism) -> Topology:

@@ -238,7 +238,7 @@ class Quantity:
         return self.kind in ("angle", "rotation", "between")
 
 
-#: quantity kinds of the limits of the motion (answers.limits): one value for a range of the
+#: quantity kinds of the limits of the motion (runs.limits): one value for a range of the
 #: driver, of the quantity named ``a`` (a name or a rate's name, e.g. xB or xBdot); ``component``
 #: is 'working' or 'return' for a stroke time, ``span`` the range (None: the default one)
 LIMITS = ("maximum", "minimum", "at_maximum", "at_minimum", "stroke", "time_ratio",

@@ -221,7 +221,7 @@ class Plan:
                 return result
         result = self.collect(mech, solver, solved(solver, order, *driver))
         if q is None:       # the file's own position: what the figure check says of it
-            from linkcli.answers.validate import figure_cautions
+            from linkcli.kinematics.solvers import figure_cautions
             result.cautions = (figure_cautions(mech) if self.method == "closed" else []) + \
                 result.cautions
         return result

@@ -31,6 +31,7 @@ from linkcli.input.oscillation import OSCILLATION
 from linkcli.forces.lagrange import Lagrangian
 from linkcli.kinematics import jacobian as jac
 from linkcli.kinematics.solvers import solver_for
+from linkcli.kinematics.topology import SEVERAL_DRIVERS
 from linkcli.model.mechanism import VIBRATION, split_rate
 from linkcli.model.dimensions import FREQUENCY_DIM, coordinate_dim, generalised_force_dim, \
     matrix_dim, of_quantity
@@ -116,9 +117,12 @@ def evaluate(mech, names, result):
     for name in names:
         base, order = split_rate(name, mech.quantities)
         if order and name not in mech.quantities:
-            raise InputError(f"'{name}': a vibration problem has no driver rates",
+            raise InputError(f"'{name}': a file with 'coordinates:' is a vibration problem, "
+                             "solved at its static equilibrium: it has no driver rates",
                              file=mech.file, key="report",
-                             hint="ask for amplitudes, frequencies or the free response")
+                             hint="ask for amplitudes, frequencies or the free response; a "
+                             "mechanism moved at given input rates takes a 'driver:' instead: "
+                             + SEVERAL_DRIVERS)
     analysis = analyse(mech)
     geometric = [n for n in names if mech.quantities[n].kind not in VIBRATION]
     if geometric or mech.report.get("points"):

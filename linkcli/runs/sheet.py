@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from linkcli.answers import design, quantities
+from linkcli.answers import quantities
+from linkcli.runs import design
 from linkcli.answers.quantities import Result, expressions
 from linkcli.errors import InputError
 
@@ -18,8 +19,9 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
     """Every name of ``names`` (default: the report's) in its display unit; a design
     question answered first (``design``: the file built with its unknowns' solution),
     expression quantities worked out from the answers they read (``quantities.expressions``)."""
-    if design.unsolved(mech):
-        mech = design.resolved(mech, evaluate)
+    refuse_driving(mech, q, qdot, qddot, method)
+    if design.unsolved(mech):       # each trial by the method asked
+        mech = design.resolved(mech, evaluate, method, tol)
     names = list(names) if names is not None else quantities.report_names(mech)
     solve, exprs = expressions.expand(mech, names)
     solved = [n for n in solve if _kind(mech, n) == "design"]
@@ -44,16 +46,25 @@ def _kind(mech, name):
 def _evaluate(mech, q, qdot, qddot, names, method, tol) -> Result:
     """``names`` (none an expression) by the path they need."""
     if mech.elements is None:       # a file with a driver: no vibration modules to import
-        if _asks_limits(mech, names):   # maxima, strokes ...: answers.limits
-            from linkcli.answers import limits
+        if _asks_limits(mech, names):   # maxima, strokes ...: runs.limits
+            from linkcli.runs import limits
             return limits.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
         return quantities.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
     from linkcli.answers.quantities import vibration
+    return vibration.evaluate(mech, list(names), Result(mech))
+
+
+def refuse_driving(mech, q=None, qdot=None, qddot=None, method="closed") -> None:
+    """A vibration problem (``elements``) is solved at its static equilibrium, by the closed
+    form: driver values, rates or another method are refused by name (before a design
+    question's trials are solved, and by the commands that draw or sweep one)."""
+    if mech.elements is None:
+        return
     if q is not None or qdot is not None or qddot is not None or method != "closed":
         raise InputError("a vibration problem is solved at its static equilibrium: it takes no "
                          "driver values, rates or method", file=mech.file,
+                         key="--method" if method != "closed" else None,
                          hint="drop q, qdot, qddot and --method")
-    return vibration.evaluate(mech, list(names), Result(mech))
 
 
 def _asks_limits(mech, names) -> bool:

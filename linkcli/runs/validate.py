@@ -68,7 +68,7 @@ def validate_file(path: str, k: int | None = None) -> Validation:
     if errors:
         result.problems, result.exit_code = _lines(errors, digits), 2
         return result
-    from linkcli.kinematics.solvers import solver_for
+    from linkcli.kinematics.solvers import figure_cautions, solver_for
     try:
         topology = solver_for(mech).topology
     except StructureError as exc:   # valid, if the numerical method solves it
@@ -103,18 +103,6 @@ def _newton_only(result, mech, exc, name) -> Validation:
         return result
     result.problems, result.exit_code = _lines(_errors(exc.located(name))), exc.exit_code
     return result
-
-
-def figure_cautions(mech) -> list:
-    """What the figure check found: the figure far from the solved position, an ambiguous or
-    forced branch, a figure that cannot be assembled (the branch is then undetermined)."""
-    from linkcli.errors import Caution
-    from linkcli.kinematics.solvers import solver_for
-    solver = solver_for(mech)
-    out = list(solver.cautions)
-    if solver.undetermined:
-        out.insert(0, Caution("unassembled", solver.undetermined, mech.file))
-    return out
 
 
 def _other_digits(doc, default_k, errors: list) -> dict:

@@ -39,7 +39,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.answers import quantities
-from linkcli.answers import sweep as sweep_mod
+from linkcli.runs import sweep as sweep_mod
 from linkcli.answers.formats import csv_text, fmt
 from linkcli.errors import Caution, InputError, SolveError
 from linkcli.kinematics import toggles

@@ -77,7 +77,7 @@ class Formulas:
     loop: object = None               # LinkageFormulas: the closures, where a loop refuses
 
     def ranking(self):
-        from linkcli.answers.notation import Ranking
+        from linkcli.texts.notation import Ranking
         return Ranking(self.kinds, [c.name for c in self.mech.coordinates])
 
 
@@ -193,7 +193,7 @@ class LinkageFormulas:
     kinds: dict
 
     def ranking(self):
-        from linkcli.answers.notation import Ranking
+        from linkcli.texts.notation import Ranking
         return Ranking(self.kinds)
 
 
@@ -315,7 +315,7 @@ def linkage_sections(f: LinkageFormulas, lang="en") -> list:
 def to_text(f, lang="en") -> str:
     """The formulas in exam notation."""
     import sympy as sp
-    from linkcli.answers.notation import text
+    from linkcli.texts.notation import text
     rk = f.ranking()
     lines = []
     for i, (heading, entries) in enumerate(sections(f, lang)):

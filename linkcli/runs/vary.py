@@ -17,11 +17,15 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.answers.quantities import report_names
-from linkcli.answers.sweep import Block, MAX_POSITIONS, check_names, listing
+from linkcli.runs.sheet import refuse_driving
+from linkcli.runs.sweep import Block, MAX_POSITIONS, check_names, listing
 from linkcli.errors import InputError, LinkcliError
 from linkcli.model.dimensions import param_unit_name
 
 MAX_VALUES = 10 ** 6
+#: values solved (and printed) together: the rows of a block are kept until printed, and the
+#: all-at-once solution of a vibration's coefficients checks three of each block's values
+BLOCK = 4096
 SPEC = re.compile(r"^\s*([A-Za-z][A-Za-z0-9_]*)\s*=\s*([^:]+):([^:]+):([^:]+)\s*$")
 
 
@@ -73,7 +77,7 @@ class Gap:
 @dataclass
 class Varied:
     """The answers (display units) at each solved value of the parameter: the fields of a
-    sweep over the driver (answers.sweep.Sweep), ``q`` the parameter's values."""
+    sweep over the driver (runs.sweep.Sweep), ``q`` the parameter's values."""
 
     mechanism: object
     name: str
@@ -102,52 +106,86 @@ def check_parameter(mech, name, key="--vary"):
                          hint="vary another parameter: the design is solved at each value")
 
 
+class Variation:
+    """The answers ``names`` (default: the report's) at each of ``values`` of the parameter
+    ``name`` (by ``method`` for a file with a driver), solved a block of ``block`` values at
+    a time (:meth:`blocks`), so that memory does not grow with the values: each value's
+    variant of the file is dropped once answered.  ``issues`` (the values without answers)
+    are complete once the blocks are; when no value has answers, the first value's error is
+    raised at the end of the blocks."""
+
+    def __init__(self, mech, name, values, names=None, key="--vary", method="closed", tol=None,
+                 block: int = BLOCK):
+        check_parameter(mech, name, key)
+        refuse_driving(mech, method=method)     # a vibration problem: its equilibrium's
+        self.names = check_names(mech, names or None, "--names") if names else \
+            report_names(mech)
+        self.values = np.asarray(values, dtype=float).ravel()
+        if self.values.size > MAX_POSITIONS:
+            raise InputError(f"{self.values.size} values is more than the limit of "
+                             f"{MAX_POSITIONS}", key=key)
+        self.mech, self.name, self.method, self.tol = mech, name, method, tol
+        self.block = max(1, int(block))
+        self.unit = param_unit_name(mech, name)
+        self.units: dict = {}
+        self.issues: list = []
+        self.solved_rows = 0
+        self.first_error = None
+
+    def blocks(self):
+        """The answers a block at a time (answers.sweep.Block, the parameter's values in the
+        place of the driver's)."""
+        for lo in range(0, self.values.size, self.block):
+            yield self._solve(lo, self.values[lo:lo + self.block])
+        if not self.solved_rows:
+            raise self.first_error
+
+    def _solve(self, offset, values) -> Block:
+        """The block of ``values``, the first of them the ``offset``-th value: the ones the
+        linear system answers all at once (vibration coefficients), the others one by one."""
+        from linkcli.runs.coefficients import sweep as at_once
+        from linkcli.runs.sheet import evaluate
+        from linkcli.input.document import rebuild
+        rows = {n: np.full(values.size, np.nan) for n in self.names}
+        solved = np.zeros(values.size, bool)
+        fast = at_once(self.mech, self.name, values, self.names, evaluate) \
+            if self.method == "closed" else None
+        if fast is not None:
+            answers, solved, units = fast
+            self.units.update(units)
+            for n in self.names:
+                rows[n][solved] = answers[n][solved]
+        for i in np.nonzero(~solved)[0]:
+            try:
+                variant = rebuild(self.mech, {self.name: float(values[i])})
+                result = evaluate(variant, names=self.names, method=self.method, tol=self.tol)
+            except LinkcliError as exc:
+                self.first_error = self.first_error or exc
+                _gap(self, offset + i, values[i], exc)
+                continue
+            solved[i] = True
+            self.units.update(result.units)
+            for n in self.names:
+                rows[n][i] = float(np.asarray(result.values[n], dtype=float))
+        self.solved_rows += int(np.count_nonzero(solved))
+        return Block(values, solved, {n: v[solved] for n, v in rows.items()})
+
+
 def vary(mech, name, values, names=None, key="--vary", method="closed", tol=None) -> Varied:
     """The answers ``names`` (default: the report's) at each of ``values`` of the parameter
-    ``name`` (by ``method`` for a file with a driver); raises the error of the first value
-    when no value has answers."""
-    from linkcli.input.document import rebuild
-    from linkcli.answers.sheet import evaluate
-    check_parameter(mech, name, key)
-    names = check_names(mech, names or None, "--names") if names else report_names(mech)
-    values = np.asarray(values, dtype=float)
-    if values.size > MAX_POSITIONS:
-        raise InputError(f"{values.size} values is more than the limit of {MAX_POSITIONS}",
-                         key=key)
-    out = Varied(mech, name, values, np.zeros(values.size, bool), names,
-                 unit=param_unit_name(mech, name))
-    rows = {n: np.full(values.size, np.nan) for n in names}
-    first_error = None
-    from linkcli.answers.coefficients import sweep as at_once
-    fast = at_once(mech, name, values, names, evaluate) if method == "closed" else None
-    if fast is not None:        # the values the linear system answers, all at once
-        answers, done, units = fast
-        out.units.update(units)
-        for n in names:
-            rows[n][done] = answers[n][done]
-        out.solved |= done
-    for i, value in enumerate(values):
-        if out.solved[i]:
-            continue
-        try:
-            variant = rebuild(mech, {name: float(value)})
-            result = evaluate(variant, names=names) if variant.elements is not None else \
-                evaluate(variant, names=names, method=method, tol=tol)
-        except LinkcliError as exc:
-            first_error = first_error or exc
-            _gap(out, i, value, exc)
-            continue
-        out.solved[i] = True
-        out.units.update(result.units)
-        for n in names:
-            rows[n][i] = float(np.asarray(result.values[n], dtype=float))
-    if not out.solved.any():
-        raise first_error
-    out.values = {n: v[out.solved] for n, v in rows.items()}
+    ``name`` (by ``method`` for a file with a driver), gathered (:class:`Variation` solves
+    them a block at a time); raises the error of the first value when no value has
+    answers."""
+    variation = Variation(mech, name, values, names, key, method, tol)
+    parts = list(variation.blocks())
+    solved = np.concatenate([p.solved for p in parts])
+    out = Varied(mech, name, variation.values, solved, variation.names,
+                 unit=variation.unit, units=variation.units, issues=variation.issues)
+    out.values = {n: np.concatenate([p.values[n] for p in parts]) for n in variation.names}
     return out
 
 
-def _gap(out: Varied, i, value, exc) -> None:
+def _gap(out, i, value, exc) -> None:
     """Report the value ``i`` left out, joined to the previous range for the same kind of
     error (its class and key); the range keeps the message of its first value."""
     kind = (type(exc).__name__, exc.key)
@@ -159,17 +197,12 @@ def _gap(out: Varied, i, value, exc) -> None:
                           kind))
 
 
-def blocks(varied: Varied):
-    """The varied answers as the one block of a sweep (answers.sweep.Block), the parameter's
-    values in the place of the driver's."""
-    yield Block(varied.q, varied.solved, varied.values)
-
-
-def write(varied: Varied, form: str, decimals: int | None, put) -> list:
-    """Print ``varied`` through ``put`` as CSV, JSON or a table (the formats of a sweep over
-    the driver, the parameter's column first); returns the reports."""
-    from linkcli.answers.sweep import _write
-    label = f"{varied.name}"
-    _write(blocks(varied), varied.mechanism, "closed", varied.names, varied.units,
-           varied.unit, lambda: varied.issues, form, 1, decimals, put, first=label)
-    return varied.issues
+def write(variation: Variation, form: str, decimals: int | None, put) -> list:
+    """Print ``variation`` through ``put`` as CSV, JSON or a table (the formats of a sweep
+    over the driver, the parameter's column first), a block at a time as it is solved;
+    returns the reports."""
+    from linkcli.runs.sweep import _write
+    _write(variation.blocks(), variation.mech, "closed", variation.names, variation.units,
+           variation.unit, lambda: variation.issues, form, 1, decimals, put,
+           first=variation.name)
+    return variation.issues

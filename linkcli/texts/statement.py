@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import cmath
 import math
+import weakref
 from decimal import Decimal
 
 from linkcli.model.mechanism import FRAME, split_rate
@@ -283,6 +284,11 @@ PHRASES = {
         "find {unknowns} such that {targets}",
         "trovare {unknowns} tali che {targets}",
     ),
+    "design_one": (
+        "find {unknowns} such that {targets}",
+        "trovare {unknowns} tale che {targets}",
+    ),
+    "depends": ("depends on {name}", "dipende da {name}"),
     "equilibrium_figure": (
         "the figure is a static equilibrium",
         "la figura è una posizione di equilibrio statico",
@@ -375,24 +381,175 @@ class Writer:
 
 
 # --- the data -------------------------------------------------------------------------------
-def data_lines(mech, lang: str = "en") -> list[str]:
-    """Every datum of ``mech`` as lines of text (see the module's docstring)."""
+def data_lines(mech, lang: str = "en", solution=None) -> list[str]:
+    """Every datum of ``mech`` as lines of text (see the module's docstring).  Where it asks
+    a design question, a datum that depends on an unknown is stated as the unknown, not at
+    the value the file gives it for the figure, and the last line asks the unknowns, each
+    named by what it is, with the targets in their units (those of ``solution``,
+    runs.design's, where the file gives none)."""
     w = Writer(mech, lang)
+    lines = _lines(w)
+    if mech.design is not None and not mech.design.fixed:
+        lines = _unknowns_stated(mech, lines, lang)
+    return lines + _design(w, solution)
+
+
+def _lines(w) -> list:
     lines = []
     for part in (_frame, _links, _actuators, _sliders, _contacts, _motion, _loads, _dynamics,
-                 _elements, _design):
+                 _elements):
         lines += part(w)
     return [line for line in lines if line]
 
 
-def _design(w) -> list:
-    """A design question: its unknowns and the targets' values."""
+# --- a design question ------------------------------------------------------------------------
+#: where a file writes an unknown parameter (a key path, '*' any name) and what it is there
+ROLES = (
+    (("links", "*", "length"), ("the length of {}", "la lunghezza di {}"),
+     ("the lengths of {}", "le lunghezze di {}")),
+    (("springs", "*", "k"), ("the stiffness of spring {}", "la rigidezza della molla {}"),
+     ("the stiffness of springs {}", "la rigidezza delle molle {}")),
+    (("springs", "*", "free_length"), ("the free length of spring {}",
+                                       "la lunghezza libera della molla {}"),
+     ("the free length of springs {}", "la lunghezza libera delle molle {}")),
+    (("dampers", "*", "c"), ("the damping coefficient of damper {}",
+                             "il coefficiente di smorzamento dello smorzatore {}"),
+     ("the damping coefficient of dampers {}",
+      "il coefficiente di smorzamento degli smorzatori {}")),
+    (("dynamics", "masses", "*"), ("the mass at {}", "la massa in {}"),
+     ("the masses at {}", "le masse in {}")),
+    (("dynamics", "inertias", "*"), ("the moment of inertia of {}",
+                                     "il momento d'inerzia di {}"),
+     ("the moments of inertia of {}", "i momenti d'inerzia di {}")),
+    (("loads", "*", "value"), ("the value of load {}", "il valore del carico {}"),
+     ("the value of loads {}", "il valore dei carichi {}")),
+    (("driver", "value"), ("the driver's value", "il valore del movente"), None),
+    (("driver", "rate"), ("the driver's rate", "la velocità del movente"), None),
+)
+#: a value of the unknown for the data stated at another one (a ratio, not a round number)
+OTHER = 1.2345678
+
+
+def unknown_role(mech, name: str, lang: str = "en") -> str:
+    """What the parameter ``name`` is where the file writes it on its own ('the length of
+    OA'), each place once; '' where no key says."""
+    data = mech.source.doc.data if mech.source is not None else None
+    found = {}
+    for path in _written_at(data, name):
+        for role in ROLES:
+            pattern = role[0]
+            if len(path) == len(pattern) and all(p in ("*", q) for p, q in zip(pattern, path)):
+                found.setdefault(role, []).extend(q for p, q in zip(pattern, path) if p == "*")
+    i = LANGS.index(lang)
+    return ", ".join((role[2] if len(names) > 1 and role[2] else role[1])[i].format(
+        ", ".join(names)) for role, names in found.items())
+
+
+def _written_at(data, name, path=()) -> list:
+    """The key paths of ``data`` whose value is the text ``name``."""
+    if isinstance(data, dict):
+        return [p for key, value in data.items() for p in _written_at(value, name,
+                                                                       path + (str(key),))]
+    if isinstance(data, str) and data.strip() == name and path and path[0] != "params":
+        return [path]
+    return []
+
+
+NUMBER = r"-?\d+(?:[.,]\d+)?(?:e[-+]?\d+)?"
+
+
+def variants(mech) -> list:
+    """(name, start, other value, the mechanism built with it) of each unknown of ``mech``'s
+    design question that can be built at another value (kept per mechanism)."""
+    from linkcli.errors import LinkcliError
+    from linkcli.input.document import rebuild
+    kept = _VARIANTS
+    if mech not in kept:
+        out = []
+        for u in mech.design.unknowns:
+            start = float(mech.params[u.name])
+            other = start * OTHER if start else OTHER
+            try:
+                out.append((u.name, start, other, rebuild(mech, {u.name: other})))
+            except LinkcliError:
+                continue
+        kept[mech] = out
+    return kept[mech]
+
+
+_VARIANTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def unknown_datum(mech, measure, si_factor=1.0) -> str | None:
+    """The unknown a datum ``measure(mech)`` (SI; ``si_factor`` of the unknown's unit, as
+    the file writes it) depends on: its name where the datum is the unknown, 'name?' where
+    it depends on it otherwise; None where it is data (or no design question is asked)."""
+    if mech.design is None or mech.design.fixed:
+        return None
+    here = measure(mech)
+    for name, start, other, varied in variants(mech):
+        there = measure(varied)
+        if math.isclose(here, there, rel_tol=CLOSE, abs_tol=CLOSE * abs(here)):
+            continue
+        if math.isclose(here, start * si_factor, rel_tol=CLOSE) and \
+                math.isclose(there, other * si_factor, rel_tol=CLOSE):
+            return name
+        return f"{name}?"
+    return None
+
+
+def _unknowns_stated(mech, lines, lang) -> list:
+    """``lines`` with every number that changes with an unknown's value (the data stated
+    again at another value, number by number) written as the unknown's name."""
+    import re
+    split = [re.split(f"({NUMBER})", line) for line in lines]
+    for name, start, other, varied_mech in variants(mech):
+        varied = _lines(Writer(varied_mech, lang))
+        if len(varied) != len(lines):
+            continue
+        for parts, line in zip(split, varied):
+            there = re.split(f"({NUMBER})", line)
+            if len(there) != len(parts) or there[::2] != parts[::2]:
+                continue
+            for i in range(1, len(parts), 2):
+                if parts[i] != there[i]:
+                    parts[i] = _as_unknown(parts, i, there[i], name, start, other, lang)
+    return ["".join(parts) for parts in split]
+
+
+def _as_unknown(parts, i, there, name, start, other, lang) -> str:
+    """The number ``parts[i]`` (``there`` at the other value) as the unknown ``name``: its
+    own name where the datum is the unknown as the file writes it, a multiple of it ('8 ks')
+    where it is proportional, else '?' and that it depends on it; never its number."""
+    import re
+
+    def read(text):
+        return float(text.replace(",", ".")) if lang == "it" else float(text)
+    here, varied = read(parts[i]), read(there)
+    ratio = here / start if start else math.nan
+    if not math.isclose(varied / other, ratio, rel_tol=1e-6):
+        return f"? ({WORDS[lang]['depends'].format(name=name)})"
+    parts[i + 1] = re.sub(r"^(°| [^\s,;()]+)", "", parts[i + 1])    # the unknown's unit
+    if math.isclose(ratio, 1.0, rel_tol=CLOSE):
+        return name
+    return f"{number(ratio, lang)} {name}"
+
+
+def _design(w, solution=None) -> list:
+    """A design question: the unknowns, each with what it is, and the targets' values with
+    their units."""
     design = w.mech.design
     if design is None:
         return []
-    targets = ", ".join(f"{t.name} = {w.num(t.value)}" + (f" {t.unit}" if t.unit else "")
+    units = solution.units if solution is not None else {}
+    targets = ", ".join(f"{t.name} = {w.num(t.value)}" + (f" {u}" if (u := t.unit or
+                                                                   units.get(t.name)) else "")
+                        + (f" ({what})" if (what := describe(w.mech, t.name, w.lang)) else "")
                         for t in design.targets)
-    return [w.w["design"].format(unknowns=", ".join(design.names), targets=targets)]
+    unknowns = ", ".join(f"{n} ({role})" if (role := unknown_role(w.mech, n, w.lang)) else n
+                         for n in design.names)
+    key = "design_one" if len(design.names) == 1 else "design"
+    return [w.w[key].format(unknowns=unknowns, targets=targets)]
 
 
 def _frame(w) -> list:
@@ -850,6 +1007,7 @@ def _geometry(key_en, key_it):
 
 
 _DESCRIBE = {
+    "design": lambda w, q: unknown_role(w.mech, q.a, w.lang),
     "angle": _geometry("angle of {a}→{b} from +x", "angolo di {a}→{b} da +x"),
     "length": _geometry("length {a}{b}", "lunghezza {a}{b}"),
     "x": _geometry("x of {a}", "x di {a}"),

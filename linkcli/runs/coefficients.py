@@ -59,11 +59,12 @@ def sweep(mech, name, values, names, evaluate):
     except LinkcliError:
         return None
     answers, good = linear.answers(wanted, base)
-    if exprs:
-        answers, good = _expressions(mech, names, exprs, answers, good, base)
+    units = dict(base.units)
+    if exprs:       # an expression's unit is known once it is worked out
+        answers, good, units = _expressions(mech, names, exprs, answers, good, base)
     else:
         answers = {n: answers[n] for n in names}
-    units = {n: base.units[n] for n in names}
+    units = {n: units[n] for n in names}
     if not _agrees(mech, name, values, names, answers, good, evaluate):
         return None
     for n in answers:
@@ -354,7 +355,8 @@ def _expressions(mech, names, exprs, answers, good, base):
     result = Result(mech, values=dict(answers), units=dict(base.units))
     complete(mech, result, names, exprs)
     values = {n: np.asarray(v, dtype=float) for n, v in result.values.items()}
-    return values, good & np.all([np.isfinite(v) for v in values.values()], axis=0)
+    return values, good & np.all([np.isfinite(v) for v in values.values()], axis=0), \
+        dict(result.units)
 
 
 def _agrees(mech, name, values, names, answers, good, evaluate) -> bool:

@@ -165,7 +165,7 @@ def _started_at(doc, factor):
 def stated(doc, lang="en"):
     """What the documents state of the question: the data lines and the exam figure's
     texts (a figure's geometry apart)."""
-    from linkcli.texts.statement import data_lines
+    from linkcli.texts.data import data_lines
     from linkcli.pictures.exam import exam_figure
     mech = build(doc)
     method = METHOD.get(os.path.basename(doc.name), "closed")
@@ -186,9 +186,9 @@ def test_the_statement_does_not_give_the_figures_value_of_an_unknown(path):
 
 def test_the_statement_check_catches_an_unknown_stated_at_its_value(monkeypatch):
     """Planted: the data and the figure state every datum at the file's value."""
-    from linkcli.texts import statement
-    monkeypatch.setattr(statement, "_unknowns_stated", lambda mech, lines, lang: lines)
-    monkeypatch.setattr(statement, "unknown_datum", lambda *a, **k: None)
+    from linkcli.texts import data, unknowns
+    monkeypatch.setattr(data, "_unknowns_stated", lambda mech, lines, lang: lines)
+    monkeypatch.setattr(unknowns, "unknown_datum", lambda *a, **k: None)
     import linkcli.pictures.exam as exam
     monkeypatch.setattr(exam, "unknown_datum", lambda *a, **k: None)
     doc = load_file(CRANK)

@@ -2,7 +2,7 @@
 
 Each question states the problem with that digit's data: the title, the file's
 ``statement`` (added to, not instead of, the data), every datum of the model in words
-(:mod:`linkcli.texts.statement`), the exam's figure (:mod:`linkcli.pictures.exam`:
+(:mod:`linkcli.texts.data`), the exam's figure (:mod:`linkcli.pictures.exam`:
 the data drawn, no answer), how to write the answers, and one NUMERICAL box per
 reported quantity, in the order and sections of the exam's table::
 
@@ -59,7 +59,9 @@ from linkcli.answers.formats import fmt, without_noise
 from linkcli.answers.formats import heading as section_heading
 from linkcli.answers.quantities import angle_period, report_names
 from linkcli.runs.sheet import evaluate
-from linkcli.texts.statement import data_lines, describe, number
+from linkcli.texts.amounts import number
+from linkcli.texts.data import data_lines
+from linkcli.texts.quantities import describe
 from linkcli.errors import InputError, LinkcliError, SolveError
 from linkcli.exports.text import refuse_unfit, visible
 from linkcli.input.document import build

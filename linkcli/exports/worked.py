@@ -23,7 +23,7 @@ from linkcli.runs import design
 from linkcli.texts.explain import explain
 from linkcli.answers.formats import fmt, heading
 from linkcli.runs.sheet import evaluate
-from linkcli.texts.statement import data_lines
+from linkcli.texts.data import data_lines
 from linkcli.exports.text import fence, markdown, refuse_unfit, visible
 from linkcli.input.document import build
 from linkcli.kinematics.solvers import solver_for

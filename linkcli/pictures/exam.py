@@ -8,7 +8,7 @@ their values and directions, the unknown load in its positive sense marked '?', 
 the driver with its value and the sense of its rate (for a vibration problem, each
 coordinate with its positive sense).  The vector polygon, the solved angles and every
 other answer of ``draw`` are left out, and so are the axes' ticks: a number drawn is a
-number of the statement (:mod:`linkcli.texts.statement` words the same data).
+number of the statement (:mod:`linkcli.texts.data` words the same data).
 
 :func:`exam_figure` builds the matplotlib figure (tests read its texts); :func:`draw_exam`
 writes it like ``draw``.
@@ -19,8 +19,10 @@ import cmath
 import math
 
 from linkcli.model.mechanism import FRAME
-from linkcli.texts.statement import (CLOSE, Writer, fixed_line, force_by_components,
-                                    unknown_datum)
+from linkcli.texts.amounts import CLOSE, Writer
+from linkcli.texts.bodies import fixed_line
+from linkcli.texts.loads import force_by_components
+from linkcli.texts.unknowns import unknown_datum
 from linkcli.pictures.drawing import (KNOWN, UNKNOWN, _arc, _arrow, _axial, _force, _line, _text,
                                       _torque, draw_elements, draw_masses, draw_mechanism, figure,
                                       set_limits)

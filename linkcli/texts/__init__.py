@@ -1,7 +1,9 @@
 """Texts: a solution described in words and formulas, for the terminal and the documents.
 
-``statement`` (the problem's data in words, Italian or English, and what each
-reported quantity is), ``explain`` (Grübler's count, the decomposition and the
+``data`` (the problem's data in words, Italian or English: ``bodies``, ``loads``,
+``masses`` and ``elements`` state each part, ``amounts`` its numbers with their units,
+``phrases`` the words of both languages, ``unknowns`` a design question's unknowns),
+``quantities`` (what each reported quantity is), ``explain`` (Grübler's count, the decomposition and the
 solving order), ``pseudocode`` (that order as the exam's pseudo-MATLAB dyad
 calls), ``symbolic`` (the formulas of ``--symbolic`` as text and JSON) and
 ``notation`` (a formula written as the exam writes it: text, LaTeX, MathML).

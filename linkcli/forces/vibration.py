@@ -30,7 +30,7 @@ import numpy as np
 
 from linkcli.errors import SolveError
 from linkcli.forces.equilibrium import Equilibrium, equilibrium
-from linkcli.forces.lagrange import Lagrangian, require_mass
+from linkcli.forces.lagrange import Lagrangian, energy_units, require_mass
 from linkcli.model.units import DIMENSIONS
 
 #: an eigenvalue of K below -UNSTABLE times the largest is a loss of stability
@@ -84,7 +84,7 @@ def linearise(lag: Lagrangian) -> Linear:
                          file=mech.file, hint="leave at least one coordinate without a support motion")
     t = eq.terms
     ix = np.ix_(free, free)
-    require_mass(mech, t.M, free)
+    require_mass(mech, t.M, free, lag.scales)
     elements = mech.elements
     supports = np.zeros(len(imposed), dtype=complex)
     for s in (elements.supports.values() if elements else ()):
@@ -279,13 +279,16 @@ def dynamic_matrix(lin: Linear, omega):
     """D(Omega) = K - Omega^2 M + i Omega R for each Omega, and where D is singular:
     |det D| against the product over the rows of the magnitudes of their terms
     (sum_j |K_ij| + Omega^2 |M_ij| + Omega |R_ij|) below SINGULAR, an undamped resonance.
-    The ratio is dimensionless and sees the cancellation of K against Omega^2 M."""
+    Both are taken in energy units (``lagrange.energy_units``: a row's terms of a length
+    and of an angle coordinate in one unit), so the ratio is dimensionless whatever the
+    length unit, and sees the cancellation of K against Omega^2 M."""
     w = np.asarray(omega, dtype=float)[..., None, None]
     D = lin.K - w ** 2 * lin.M + 1j * w * lin.R
-    scale = np.abs(lin.K) + w ** 2 * np.abs(lin.M) + w * np.abs(lin.R)
-    rows = np.prod(np.sum(scale, axis=-1), axis=-1)
-    ratio = np.abs(np.linalg.det(D)) / np.where(rows > 0, rows, 1.0)
-    return D, ratio < SINGULAR
+    d = np.asarray(lin.lag.scales, float)[lin.free]
+    scale = energy_units(np.abs(lin.K) + w ** 2 * np.abs(lin.M) + w * np.abs(lin.R), d)
+    rows = np.sum(scale, axis=-1)[..., None]       # each row over its magnitude before the
+    ratio = np.abs(np.linalg.det(energy_units(D, d) / np.where(rows > 0, rows, 1.0)))
+    return D, ratio < SINGULAR                      # determinant: no power of the size in it
 
 
 def response(lin: Linear, omega):

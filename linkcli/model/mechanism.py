@@ -342,6 +342,14 @@ class Mechanism:
     def points(self) -> list:
         return [p for p in self.fixed if not p.startswith("~")] + list(self.moving)
 
+    @property
+    def figure_points(self) -> list:
+        """The figure's positions of the named points (m): not the virtual ones (a fixed
+        guide's second point, drawn at least 1 m away to give its direction, is no part of
+        the mechanism's size)."""
+        figure = {**self.fixed, **self.moving}
+        return [figure[p] for p in self.points]
+
     def unknown_load(self) -> Load:
         load = next((load for load in self.loads.values() if load.value is None), None)
         if load is None:

@@ -416,7 +416,7 @@ def _natural(mech, quantity, order, probe) -> float:
     """A natural size of the quantity (display units): a turn for an angle, the figure's size
     for a length, and those times the driver's speed for their rates."""
     units = mech.units
-    pos = list(mech.fixed.values()) + list(mech.moving.values())
+    pos = mech.figure_points
     size = max((abs(p - pos[0]) for p in pos), default=1.0) or 1.0
     angle = quantity.angular or quantity.kind == "q" and mech.driver.base == "angle"
     base = "angle" if angle else "length"

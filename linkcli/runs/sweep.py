@@ -665,7 +665,7 @@ def _conditioning(kin) -> np.ndarray:
 
 def mechanism_size(mech) -> float:
     """The mechanism's size: the largest distance of a figure point from the first (m)."""
-    points = list(mech.fixed.values()) + list(mech.moving.values())
+    points = mech.figure_points
     return max((abs(p - points[0]) for p in points), default=1.0) or 1.0
 
 

@@ -211,7 +211,7 @@ class _Writer:
         self.directions: dict = {}      # (K, M) -> the name of angle(M - K)
         self.step = 0
         self.heading = ""               # the heading of the group being written
-        points = [*mech.fixed.values(), *mech.moving.values()]
+        points = mech.figure_points
         self.size = max((abs(z) for z in points), default=1.0) or 1.0
 
     # constants ------------------------------------------------------------------

@@ -81,36 +81,6 @@ NOT_REWRITTEN = {
     "docs/examples/astronomical.yaml": "lengths of 1e299 km: out of range in m or in",
 }
 
-# An expression reads a value shown in rpm, rev/s or Hz in cycles per second, so the same
-# expression of a file written with angular rates in rpm gives another number
-# (T = 2*pi/qdot, the chain rule of c*sin(beta)): the known defect of
-# /work/shared/repros/trust3/expr-frequency-units.yaml and expr-rpm-linkage.yaml.
-EXPR_CYCLES = "an expression reads a rate shown in rpm or rev/s in cycles per second " \
-              "(expr-frequency-units)"
-KNOWN = {("docs/examples/derived-answers.yaml", "si"): EXPR_CYCLES,
-         ("docs/examples/derived-answers.yaml", "turns"): EXPR_CYCLES}
-
-
-def _reads_cycles() -> bool:
-    """Whether the defect of EXPR_CYCLES is there: a crank at 60 rpm (2 pi rad/s) read by an
-    expression shown in rad/s."""
-    import math
-
-    import linkcli
-    text = """
-units: {angular_rate: rpm}
-frame: {A: [0, 0]}
-points: {B: [100, 0]}
-links: {AB: {points: [A, B], length: 100}}
-driver: {angle: [A, B], value: 0, rate: 60}
-quantities: {w: {expr: qdot, unit: rad/s}}
-report: {velocity: [w]}
-"""
-    return not math.isclose(linkcli.loads(text).solve().values["w"], 2 * math.pi)
-
-
-READS_CYCLES = _reads_cycles()
-
 
 @functools.lru_cache(maxsize=None)
 def data_of(path: str) -> dict:
@@ -121,7 +91,7 @@ def data_of(path: str) -> dict:
 def baseline(path: str, k) -> T.Outcome:
     """The file's own answers."""
     with open(os.path.join(ROOT, path), encoding="utf-8") as f, warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)      # overflow.yaml's squares
+        warnings.simplefilter("ignore", RuntimeWarning)      # astronomical.yaml's squares
         return T.solve(f.read(), k, path)
 
 
@@ -145,16 +115,8 @@ def check(path: str, system: dict) -> list:
     return out
 
 
-def _cases():
-    for path in FILES:
-        for name in SYSTEMS:
-            marks = []
-            if (path, name) in KNOWN:
-                marks = [pytest.mark.xfail(READS_CYCLES, strict=True, reason=KNOWN[(path, name)])]
-            yield pytest.param(path, name, marks=marks, id=f"{path}-{name}")
-
-
-@pytest.mark.parametrize("path, system", list(_cases()))
+@pytest.mark.parametrize("path, system", [pytest.param(p, s, id=f"{p}-{s}")
+                                          for p in FILES for s in SYSTEMS])
 def test_same_answers_in_other_units(path, system, invariance_counter):
     differences = check(path, SYSTEMS[system])
     if differences is None:
@@ -258,9 +220,6 @@ REWRITTEN = [p for p in FILES if p not in NOT_REWRITTEN]
 @given(path=st.sampled_from(REWRITTEN), seed=st.integers(0, 2 ** 32 - 1))
 def test_random_systems(path, seed, invariance_counter):
     system = T.random_system(random.Random(seed))
-    if READS_CYCLES and path == "docs/examples/derived-answers.yaml" and \
-            system.get("angular_rate") in ("rpm", "rev/s"):
-        return      # EXPR_CYCLES, above
     invariance_counter["units: random"] += 1
     differences = check(path, system)
     assert differences == [], f"{path} in {system}:\n" + "\n".join(differences)
@@ -290,10 +249,10 @@ report: {velocity: [phidot, xBdot], acceleration: [phiddot]}
 
 
 def test_parameter_units_are_those_of_the_format():
-    """Every unit linkcli gives a parameter is the one the format gives it: the kind of the
-    values it is written as on its own (tests/transforms.py).  An initial velocity of a
-    length coordinate made its parameter a length (so ``{expr: v0, unit: m/s}`` was refused
-    as a length, and ``unit: mm`` showed 500 mm for 500 mm/s)."""
+    """Every parameter has the unit the format gives it: the kind of the values it is written
+    as on its own (tests/transforms.py).  An initial velocity of a length coordinate made its
+    parameter a length (so ``{expr: v0, unit: m/s}`` was refused as a length, and ``unit:
+    mm`` showed 500 mm for 500 mm/s)."""
     import linkcli
     for path in REWRITTEN:
         data = data_of(path)
@@ -301,9 +260,7 @@ def test_parameter_units_are_those_of_the_format():
             mech = linkcli.load(os.path.join(ROOT, path)).model
         except linkcli.LinkcliError:
             continue
-        format_kinds = T.param_kinds(data, T.Sites(data))
-        for name, kind in mech.param_kinds.items():
-            assert format_kinds.get(name) == kind, (path, name, kind)
+        assert mech.param_kinds == T.param_kinds(data, T.Sites(data)), path
     text = """
 units: {length: mm, stiffness: N/m}
 params: {m: 2, ks: 200, v0: 500}
@@ -314,13 +271,13 @@ coordinates: {x: {x: P}}
 springs: {s: {between: [A, P], k: ks}}
 dynamics: {masses: {P: m}}
 initial: {x: 0, x_dot: v0}
-quantities: {X: {largest: x}}
-report: {vibration: [X]}
+quantities: {X: {largest: x}, v: {expr: v0, unit: m/s}}
+report: {vibration: [X, v]}
 """
-    linkage = linkcli.loads(text)
-    assert "v0" not in linkage.model.param_kinds
+    values = linkcli.loads(text).solve().values
     # released at 0.5 m/s from equilibrium, w = sqrt(200/2) = 10 rad/s: X = v0/w = 50 mm
-    assert linkage.solve().values["X"] == pytest.approx(50.0)
+    assert values["X"] == pytest.approx(50.0)
+    assert values["v"] == pytest.approx(0.5)
 
 
 @pytest.mark.parametrize("path, name", [

@@ -255,13 +255,10 @@ class ElementsReader:
                 else (key, False)
             j = self.coordinate(name, path + (key,))
             base = self.mech.coordinates[j].base
-            if rate and base != "angle":
-                # a length per second, which no unit kind is: converted by the length's
-                # factor, and a parameter written here takes no unit (as a driver's rate)
-                number = self.p.number(item, path + (key,)) * self.units.factor("length")
+            if rate:    # in the unit of a driver's rate, a parameter written here too
+                number = self.p.driver_rate(spec, path, key, base, 1, self.units)
             else:
-                kind = "angular_rate" if rate else base
-                number = self.p.number(item, path + (key,), kind, self.units)
+                number = self.p.number(item, path + (key,), base, self.units)
             x0, v0 = out.get(j, (0.0, 0.0))
             out[j] = (x0, number) if rate else (number, v0)
         return out

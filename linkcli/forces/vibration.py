@@ -15,7 +15,8 @@ _fs blocks coupling the two.
 - Damped: the eigenvalues s of [[0, I], [-M^-1 K, -M^-1 R]], two per undamped mode,
   paired with the modes through their eigenvectors (``damped``); a mode's roots give
   omega_n = sqrt(s1 s2), zeta = -(s1 + s2) / (2 omega_n) and, for a conjugate pair,
-  omega_d = |Im s|; two real roots are an overdamped mode (two decay rates).
+  omega_d = |Im s|; two real roots are an overdamped mode (two decay rates), one double
+  root (to within CRITICAL of its size) a critically damped one (zeta = 1).
 - Steady state: X = (K - Omega^2 M + i Omega R)^-1 F, vectorised over Omega.
 - Free response: z(t) = expm(A t) z0 for the state z = (x, x').
 - Nonlinear: M(q) q'' = Q(q) - R(q) q' - c(q, q') + forcing(t), integrated by
@@ -168,9 +169,19 @@ def _normalise(vectors, size, still):
     return out + 0.0               # no -0: a coordinate that does not move is 0
 
 
-#: a conjugate pair of roots whose imaginary part is below CRITICAL times its magnitude is a
-#: critically damped mode split by rounding (a double root is known to about sqrt(eps))
+#: a mode whose two roots are CRITICAL of their size apart, |s1 - s2| <= CRITICAL (|s1| +
+#: |s2|), is critically damped: a double root s = -omega_n split by rounding (a double root
+#: of the state matrix is known to about sqrt(eps) = 1.5e-8 of its size) into a conjugate
+#: pair or two real roots.  Dimensionless; as zeta, |zeta - 1| below about 1e-15, since
+#: |s1 - s2| / (|s1| + |s2|) = sqrt(zeta^2 - 1) / zeta for two real roots
 CRITICAL = 1e-7
+
+
+def critical(roots) -> np.ndarray:
+    """Per mode (a row of ``roots``, its two roots), whether it is critically damped: its
+    roots one double root to within :data:`CRITICAL`."""
+    size = np.abs(roots[:, 0]) + np.abs(roots[:, 1])
+    return (size > 0) & (np.abs(roots[:, 0] - roots[:, 1]) <= CRITICAL * size)
 
 
 @dataclass
@@ -184,6 +195,11 @@ class Damped:
     roots: np.ndarray        # (n, 2) complex
     oscillates: np.ndarray   # per mode: a conjugate pair of roots (not critically damped)
     share: np.ndarray        # per mode: its roots' share of that undamped mode (1: proportional)
+
+    @property
+    def critical(self):
+        """Per mode: critically damped (zeta = 1, one double root: :func:`critical`)."""
+        return critical(self.roots)
 
     @property
     def omega_n(self):
@@ -248,7 +264,7 @@ def damped(lin: Linear, found: Modes) -> Damped:
             two.sort(key=lambda r: abs(s[r]))
             roots[k] = s[two].real
             got[k] = float(np.mean(share[two, k]))
-    oscillates = np.abs(roots[:, 0].imag) > CRITICAL * np.abs(roots[:, 0])
+    oscillates = (roots[:, 0].imag != 0) & ~critical(roots)
     return Damped(roots, oscillates, got)
 
 

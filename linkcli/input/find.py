@@ -88,7 +88,7 @@ class FindSection:
         return Unknown(name, lo, hi, unit=unit, line=line)
 
     def target(self, name, value, path, quantities) -> Target:
-        base, order = split_rate(name)
+        base, order = split_rate(name, quantities)
         if base not in quantities or order > quantities[base].rates:
             raise self.error(path, f"the target '{name}' is not an answer of this file",
                              hint="a target is a quantity (or its rate) of 'quantities'")

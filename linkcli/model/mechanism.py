@@ -365,13 +365,17 @@ class Mechanism:
         return "force"
 
 
-def split_rate(name: str):
-    """'phi1ddot' -> ('phi1', 2); 'phi1dot' -> ('phi1', 1); 'phi1' -> ('phi1', 0)."""
-    if name.endswith("ddot") and len(name) > 4:
-        return name[:-4], 2
-    if name.endswith("dot") and len(name) > 3:
-        return name[:-3], 1
-    return name, 0
+def split_rate(name: str, names=()):
+    """'phi1ddot' -> ('phi1', 2); 'phi1dot' -> ('phi1', 1); 'phi1' -> ('phi1', 0).
+
+    A name ending in 'ddot' reads two ways ('wddot': the second rate of 'w' or the first of
+    'wd'); the reading whose base is one of ``names`` (the file's quantities) is taken, and
+    the second rate where none or both are (both defined is refused when the file is read:
+    input.report)."""
+    readings = [(name[:-len(suffix)], order) for suffix, order in (("ddot", 2), ("dot", 1))
+                if name.endswith(suffix) and len(name) > len(suffix)]
+    known = [r for r in readings if r[0] in names]
+    return (known or readings or [(name, 0)])[0]
 
 
 def limit_refusal(name: str, quantity: Quantity, order: int) -> str | None:

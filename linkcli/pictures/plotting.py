@@ -76,7 +76,7 @@ def check_names(mech, names):
         raise InputError("give at least one quantity to plot", key="--y",
                          hint="e.g. --y " + (report_names(mech) or ["q"])[0])
     for name in names:
-        base, order = split_rate(name)
+        base, order = split_rate(name, mech.quantities)
         quantity = mech.quantities.get(base)
         ok = quantity is not None and (order == 0 if quantity.kind == "load" else True)
         if not ok:

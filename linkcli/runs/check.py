@@ -126,8 +126,8 @@ def check_file(path: str) -> FileReport:
             for entry in key.entries:
                 if _load_rate(mech, entry):     # refused, located; the others compared
                     report.error = where + str(load_rate_error(
-                        entry.name, split_rate(entry.name)[0], file=mech.file or path,
-                        line=entry.line, key=f"keys.values.{entry.name}"))
+                        entry.name, split_rate(entry.name, mech.quantities)[0],
+                        file=mech.file or path, line=entry.line, key=f"keys.values.{entry.name}"))
             report.outcomes += _check_key(mech, entries, solved[k])
         except LinkcliError as exc:
             report.error = where + str(exc.located(path))
@@ -136,7 +136,7 @@ def check_file(path: str) -> FileReport:
 
 def _load_rate(mech, entry) -> bool:
     """Whether ``entry`` is the rate of a load, which linkcli does not compute."""
-    base, order = split_rate(entry.name)
+    base, order = split_rate(entry.name, mech.quantities)
     quantity = mech.quantities.get(base)
     return bool(order) and quantity is not None and quantity.kind == "load" and \
         not _is_point(mech, entry)

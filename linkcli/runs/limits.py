@@ -117,7 +117,7 @@ def target(mech, name, key="--of", line=None):
     if not isinstance(name, str) or not name:
         raise InputError(f"expected a quantity name, got {name!r}", file=mech.file, key=key,
                          line=line)
-    base, order = split_rate(name)
+    base, order = split_rate(name, mech.quantities)
     quantity = mech.quantities.get(base)
     if quantity is None:
         raise InputError(f"'{name}' is not a quantity of this file", file=mech.file, key=key,
@@ -185,7 +185,7 @@ class _Probe:
                           for suffix in ("dot", "ddot")]
             self.names = [name] + [n for part in self.parts for n in part]
         else:
-            base_name = split_rate(name)[0]
+            base_name = split_rate(name, mech.quantities)[0]
             self.rate_name = base_name + ("dot", "ddot")[order]
             self.parts = None
             self.names = [name, self.rate_name]
@@ -660,7 +660,7 @@ def default_names(mech) -> list:
     driver = mech.driver
     names = []
     for name in report:
-        base, order = split_rate(name)
+        base, order = split_rate(name, mech.quantities)
         quantity = mech.quantities.get(base)
         if quantity is None or limit_refusal(name, quantity, order) or quantity.kind == "q" or (
                 quantity.kind == "angle" and (quantity.a, quantity.b) == (driver.a, driver.b)):

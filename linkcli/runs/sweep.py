@@ -195,7 +195,7 @@ def check_names(mech, names, key: str = "--names") -> list:
     if not names:
         return report_names(mech)
     for name in names:
-        base, order = split_rate(name)
+        base, order = split_rate(name, mech.quantities)
         if base not in mech.quantities:
             raise InputError(f"'{name}' is not a quantity of this file", key=key,
                              hint="defined: " + listing(sorted(mech.quantities)))

@@ -15,7 +15,7 @@ from linkcli.texts.unknowns import unknown_role
 def describe(mech, name: str, lang: str = "en") -> str:
     """What the reported quantity ``name`` is, in words ('' when it says nothing more than
     its name)."""
-    base, order = split_rate(name)
+    base, order = split_rate(name, mech.quantities)
     quantity = mech.quantities.get(base)
     if quantity is None:
         return ""

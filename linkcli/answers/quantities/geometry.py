@@ -91,7 +91,7 @@ def angle_period(mech, name: str, unit: str) -> float | None:
     """The turn (360 in deg, 2 pi in rad) of a quantity that is a direction, compared and
     plotted modulo a turn (:func:`is_direction`); None for any other quantity and for every
     rate."""
-    base, order = split_rate(name)
+    base, order = split_rate(name, mech.quantities)
     if order or not is_direction(mech, mech.quantities[base]):
         return None
     return 360.0 if unit == "deg" else 2 * math.pi
@@ -109,7 +109,7 @@ def is_direction(mech, quantity) -> bool:
     if kind in ("q", "at_maximum", "at_minimum"):
         return mech.driver is not None and mech.driver.kind == "angle"
     if kind in ("maximum", "minimum"):
-        base, order = split_rate(quantity.a)
+        base, order = split_rate(quantity.a, mech.quantities)
         return not order and base in mech.quantities and \
             is_direction(mech, mech.quantities[base])
     if kind == "equilibrium":

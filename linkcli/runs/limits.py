@@ -39,11 +39,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.answers import quantities
-from linkcli.runs import sweep as sweep_mod
 from linkcli.answers.formats import csv_text, fmt
 from linkcli.errors import Caution, InputError, SolveError
 from linkcli.kinematics import toggles
 from linkcli.model.mechanism import limit_refusal, split_rate
+from linkcli.runs.sweep.blocks import mechanism_size, sweep
+from linkcli.runs.sweep.blocks import listing
 
 #: grid intervals over the range: extremes closer together than a grid step are not told apart
 GRID = 3600
@@ -121,7 +122,7 @@ def target(mech, name, key="--of", line=None):
     quantity = mech.quantities.get(base)
     if quantity is None:
         raise InputError(f"'{name}' is not a quantity of this file", file=mech.file, key=key,
-                         line=line, hint="defined: " + sweep_mod.listing(sorted(mech.quantities)))
+                         line=line, hint="defined: " + listing(sorted(mech.quantities)))
     refusal = limit_refusal(name, quantity, order)
     if refusal:
         raise InputError(refusal, file=mech.file, key=key, line=line,
@@ -224,7 +225,7 @@ def find(mech, name, start=None, stop=None, *, qdot=None, method="closed", tol=N
     turn = stop - start if periodic else (
         2 * math.pi / probe.q_factor if mech.driver.base == "angle" else None)
     q = start + (stop - start) * np.arange(grid + 1) / grid
-    swept = sweep_mod.sweep(mech, q, probe.names, method=method, tol=tol, qdot=probe.qdot,
+    swept = sweep(mech, q, probe.names, method=method, tol=tol, qdot=probe.qdot,
                             qddot=0.0)
     found = Limits(name, swept.units.get(name, ""), q_unit, start, stop, periodic, turn)
     found.notes = [issue.text() for issue in swept.issues]
@@ -237,7 +238,7 @@ def find(mech, name, start=None, stop=None, *, qdot=None, method="closed", tol=N
     roots, levels, scales = [], [], []
     natural = _natural(mech, quantity, order, probe)
     per_q = probe.q_factor / (1.0 if mech.driver.base == "angle" else
-                              sweep_mod.mechanism_size(mech))
+                              mechanism_size(mech))
     for where, turns in _runs(rows, grid, periodic, found.whole):
         picked = np.searchsorted(rows, where)
         qs = q[where] + turns * (turn or 0.0)

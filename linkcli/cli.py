@@ -687,8 +687,8 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
       linkcli sweep mechanisms/polimi-2001-09-18-vibration.yaml --vary ks=50:150:10
     """
     from linkcli.runs.sweep.blocks import Sweeper
-    from linkcli.runs.sweep.blocks import driver_range
-    from linkcli.runs.sweep.blocks import check_every, write as write_sweep
+    from linkcli.runs.sweep.driver_range import driver_range
+    from linkcli.runs.sweep.output import check_every, write as write_sweep
     _not_an_input(output, file)
     chosen = [n.strip() for n in names.split(",") if n.strip()] if names else None
     if vary is not None:

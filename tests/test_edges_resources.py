@@ -124,8 +124,8 @@ def _old_render(result, form, every=1, decimals=None):
 def test_blocks_print_the_same_digits_and_reports_as_one_block(path, start, stop, steps,
                                                                method):
     from linkcli.runs.sweep.blocks import sweep, Sweeper
-    from linkcli.runs.sweep.blocks import driver_range, driver_values
-    from linkcli.runs.sweep.blocks import write
+    from linkcli.runs.sweep.driver_range import driver_range, driver_values
+    from linkcli.runs.sweep.output import write
     whole = sweep(linkcli.load(path).model, driver_values(start, stop, steps),
                   method=method, block=10 ** 9)
     assert whole.issues or path == SIXBAR   # ranges that cannot be assembled, toggles
@@ -215,7 +215,7 @@ def test_a_branch_point_is_located_to_the_stated_accuracy(parallelogram, method,
     continuation may leave a change point on either branch, as rounding decides): it is
     found on the conditioning, whose two branches mirror each other."""
     from linkcli.runs.sweep.blocks import sweep
-    from linkcli.runs.sweep.blocks import driver_values
+    from linkcli.runs.sweep.driver_range import driver_values
     got = sweep(linkcli.load(parallelogram).model, driver_values(start, stop, steps),
                 method=method)
     found = [i.lo for i in got.issues if i.kind == "branch"]
@@ -240,7 +240,7 @@ def test_branch_points_across_block_boundaries(parallelogram):
 @pytest.mark.parametrize("steps", [2, 3, 4, 6, 36])
 def test_no_branch_point_where_there_is_none(fourbar, steps):
     from linkcli.runs.sweep.blocks import sweep
-    from linkcli.runs.sweep.blocks import driver_values
+    from linkcli.runs.sweep.driver_range import driver_values
     for path in (fourbar, SIXBAR, os.path.join(MECHANISMS, "polimi-crank-slider.yaml")):
         mech = linkcli.load(path).model
         unit, factor = mech.units.display("angle", 0)

@@ -9,7 +9,7 @@ import linkcli
 from linkcli.cli import main
 from linkcli.errors import InputError
 from linkcli.runs.sweep.blocks import sweep
-from linkcli.runs.sweep.blocks import driver_values
+from linkcli.runs.sweep.driver_range import driver_values
 
 from conftest import MECHANISMS
 

@@ -17,7 +17,7 @@ import tempfile
 import numpy as np
 
 from linkcli.answers.quantities import angle_period, report_names, require_driver
-from linkcli.runs.sweep.blocks import listing
+from linkcli.runs.sweep.names import listing
 from linkcli.runs.sheet import evaluate, refuse_driving
 from linkcli.pictures.drawing import (COLORS, draw_elements, draw_loads, draw_masses,
                                       draw_mechanism, draw_polygon, figure)

@@ -44,7 +44,7 @@ from linkcli.errors import Caution, InputError, SolveError
 from linkcli.kinematics import toggles
 from linkcli.model.mechanism import limit_refusal, split_rate
 from linkcli.runs.sweep.blocks import mechanism_size, sweep
-from linkcli.runs.sweep.blocks import listing
+from linkcli.runs.sweep.names import listing
 
 #: grid intervals over the range: extremes closer together than a grid step are not told apart
 GRID = 3600

@@ -19,8 +19,8 @@ import numpy as np
 from linkcli.answers.quantities import report_names
 from linkcli.runs.sheet import refuse_driving
 from linkcli.runs.sweep.blocks import Block
-from linkcli.runs.sweep.blocks import MAX_POSITIONS
-from linkcli.runs.sweep.blocks import check_names, listing
+from linkcli.runs.sweep.driver_range import MAX_POSITIONS
+from linkcli.runs.sweep.names import check_names, listing
 from linkcli.errors import InputError, LinkcliError
 from linkcli.model.dimensions import param_unit_name
 
@@ -203,8 +203,8 @@ def write(variation: Variation, form: str, decimals: int | None, put) -> list:
     """Print ``variation`` through ``put`` as CSV, JSON or a table (the formats of a sweep
     over the driver, the parameter's column first), a block at a time as it is solved;
     returns the reports."""
-    from linkcli.runs.sweep.blocks import _write
-    _write(variation.blocks(), variation.mech, "closed", variation.names, variation.units,
+    from linkcli.runs.sweep.output import write_rows
+    write_rows(variation.blocks(), variation.mech, "closed", variation.names, variation.units,
                variation.unit, lambda: variation.issues, form, 1, decimals, put,
                first=variation.name)
     return variation.issues

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import linkcli
-from linkcli.runs import limits
+from linkcli.runs.limits import search as limits
 from linkcli.runs.check import check_file
 from linkcli.cli import main
 from linkcli.errors import InputError, SolveError

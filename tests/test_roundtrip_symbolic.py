@@ -225,3 +225,19 @@ def test_a_rate_formula_with_its_sign_turned_is_caught(monkeypatch):
     monkeypatch.setattr(ks, "_tidy", lambda expr: -tidy(expr))
     with pytest.raises(AssertionError, match="rates of order 1"):
         check_linkage(mech, closures_of(name))
+
+
+TWINS = [("linkcli.kinematics.symbolic", "linkcli.kinematics.closed_form"),
+         ("linkcli.forces.symbolic", "linkcli.forces.lagrange"),
+         ("linkcli.forces.symbolic", "linkcli.forces.oscillation"),
+         ("linkcli.answers.symbolic", "linkcli.answers.quantities.vibration"),
+         ("linkcli.input.symbols", "linkcli.input.document")]
+
+
+@pytest.mark.parametrize("formulas_module, numbers_module", TWINS)
+def test_each_symbolic_module_and_its_numeric_twin_name_each_other(formulas_module,
+                                                                    numbers_module):
+    import importlib
+    a, b = (importlib.import_module(m) for m in (formulas_module, numbers_module))
+    assert numbers_module.removeprefix("linkcli.") in a.__doc__
+    assert formulas_module.removeprefix("linkcli.") in b.__doc__

@@ -48,9 +48,9 @@ class Budget:
 
     def exceeded(self) -> FormulaLimit:
         return FormulaLimit(f"not reached within the {self.seconds:g} s of processor time the "
-                            "formulas may take", reason="time", limit=self.seconds,
-                            size=self.spent(), hint="give --seconds more; the numbers are the "
-                            "answers")
+                            "formulas may take (--seconds gives more)", reason="time",
+                            limit=self.seconds, size=self.spent(),
+                            hint="the numbers are the answers")
 
     def keep(self, **items) -> None:
         """Keep the finished ``items`` (name -> value), unless the caller has stopped."""

@@ -13,6 +13,9 @@ their numbers.
 
 An item that has no formula (a closed loop, whose position is the root of its closure
 equations) is named with the reason instead; no number is ever printed as a formula.
+
+The numeric twin is ``answers.quantities.vibration`` (the same problem's answers); the
+formulas are written within the processor time of ``answers.budget``.
 """
 from __future__ import annotations
 

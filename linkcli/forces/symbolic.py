@@ -25,6 +25,10 @@ imposed coordinates,
 
 the stability conditions are the leading principal minors of K (all > 0), and the
 natural frequencies the roots of det(K - omega^2 M) = 0, a polynomial in omega^2.
+
+The numeric twins: ``forces.lagrange`` (T, V, D, M, K, R), ``forces.equilibrium`` (q_e),
+``forces.vibration`` (the linearisation, F) and ``forces.oscillation`` (the characteristic
+polynomial).
 """
 from __future__ import annotations
 

@@ -23,6 +23,10 @@ closure equations in complex form are ``answers.symbolic``'s.
 Points are pairs (x, y) of sympy expressions; angles of vectors are found as
 rho (cos phi, sin phi) with rho free of the coordinates when the vector is one
 (:func:`angle`), else atan2(y, x).
+
+The numeric twin is ``kinematics.closed_form`` (positions and rates along the same groups;
+``kinematics.jacobian`` for bodies' angles and points), and ``kinematics.substitute`` for a
+coordinate the groups do not place (its closures are written with the substitute).
 """
 from __future__ import annotations
 

@@ -4,7 +4,7 @@
   stiffness) on the two-coordinate double pendulum of 18 Sep 2001, its whole report, as a
   command (wall and processor time of the process, imports included) and in the process
   (warm); beside it the time per value of the file built and solved again at each value,
-  what the sweep costs without the all-at-once path (answers.coefficients).
+  what the sweep costs without the all-at-once path (runs.coefficients).
 - Design questions of one unknown: the evaluations of the file the search takes (scan and
   Brent's method) and its time, for the files of docs/examples and mechanisms/ that ask one.
 
@@ -29,8 +29,8 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, ROOT)
 
 import linkcli  # noqa: E402
-from linkcli.answers import coefficients, design  # noqa: E402
-from linkcli.answers.sheet import evaluate  # noqa: E402
+from linkcli.runs import coefficients, design  # noqa: E402
+from linkcli.runs.sheet import evaluate  # noqa: E402
 from linkcli.input.document import rebuild  # noqa: E402
 
 OUT = os.path.join(HERE, "out")

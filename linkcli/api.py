@@ -11,10 +11,10 @@ so the model itself never imports a solver.
 """
 from __future__ import annotations
 
-from linkcli.answers.limits import sweep_names
+from linkcli.runs.limits.names import sweep_names
 from linkcli.answers.quantities import Result
-from linkcli.answers.sheet import evaluate
-from linkcli.answers.sweep import Sweep, sweep
+from linkcli.runs.sheet import evaluate
+from linkcli.runs.sweep import Sweep, sweep
 from linkcli.errors import LinkcliError
 from linkcli.input.document import build
 from linkcli.input.source import load_file, load_text
@@ -56,7 +56,7 @@ class Linkage:
         """Solve at every driver value of the 1-D array ``q`` (display units), keeping the
         values that solve where others do not (:meth:`solve` refuses the whole array).
 
-        Returns a :class:`linkcli.answers.sweep.Sweep`: ``solved`` marks the driver values
+        Returns a :class:`linkcli.runs.sweep.Sweep`: ``solved`` marks the driver values
         answered, ``values`` maps each name (default: the report's, without its limits of
         the motion) to its values there, in ``units``; ``issues`` names what happened at
         each of the others (a range that cannot be assembled, a toggle, a friction that
@@ -75,9 +75,9 @@ class Linkage:
 
     def vary(self, name: str, values, *, names=None):
         """The answers ``names`` (default: the report's) at each of ``values`` of the
-        parameter ``name``: an ``answers.vary.Varied`` (``q`` the values, ``solved`` the
+        parameter ``name``: an ``runs.vary.Varied`` (``q`` the values, ``solved`` the
         rows answered, ``values`` name -> array over them, ``issues`` the values left out)."""
-        from linkcli.answers.vary import vary
+        from linkcli.runs.vary import vary
         return vary(self.model, name, values, names)
 
 

@@ -69,29 +69,31 @@ def _symbolic_options(symbolic, numbers, seconds):
                          key="--seconds", hint="e.g. --seconds 30")
 
 
-def _symbolic_load(file, k, symbolic, numbers, seconds, designed=True):
+def _symbolic_load(file, k, symbolic, numbers, seconds, designed=True, method="closed",
+                   tol=None):
     """(model, formulas' source) of ``file``: the document is read once when the formulas
-    are asked for (standard input cannot be read twice); a design question answered unless
-    ``designed`` is False."""
+    are asked for (standard input cannot be read twice); a design question answered (by
+    ``method``) unless ``designed`` is False."""
     _symbolic_options(symbolic, numbers, seconds)
     if not symbolic:
-        return _load(file, k, designed), None
+        return _load(file, k, designed, method, tol), None
     from linkcli.input.document import build
     from linkcli.input.source import load_file
     doc = load_file(file)
     return build(doc, k), doc
 
 
-def _load(path, k, designed=True):
+def _load(path, k, designed=True, method="closed", tol=None):
     """The validated model of ``path`` for digit ``k``; where the file asks a design question
-    (``find:``), built with its solution unless ``designed`` is False."""
+    (``find:``), built with its solution (each trial solved by ``method``) unless
+    ``designed`` is False."""
     from linkcli.api import load
     model = load(path, k).model
     if designed and model.design is not None:
-        from linkcli.answers.design import resolved
-        from linkcli.answers.sheet import evaluate
+        from linkcli.runs.design import resolved
+        from linkcli.runs.sheet import evaluate
         try:
-            model = resolved(model, evaluate)
+            model = resolved(model, evaluate, method, tol)
         except LinkcliError as exc:
             raise exc.located(path)
     return model
@@ -228,10 +230,15 @@ def _same_file(output, path) -> bool:
 
 
 def _not_an_input(output, *inputs):
-    """Refuse ``-o`` naming one of the input files (also through a link, and standard input
-    read from that file): it would be overwritten before, or instead of, being read."""
+    """Refuse ``-o`` naming a folder (no file can be written there, ``--force`` or not), or
+    one of the input files (also through a link, and standard input read from that file):
+    it would be overwritten before, or instead of, being read."""
     if output is None:
         return
+    if os.path.isdir(output):
+        raise InputError("the output path is a folder", file=output, key="-o",
+                         hint="give the name of a file to write, such as "
+                         f"{os.path.join(output, 'NAME')}")
     for path in inputs:
         if path is None:
             continue
@@ -311,17 +318,17 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions, symboli
         raise InputError("--symbolic writes formulas in the exam, table or json format, not "
                          "csv", key="--format", hint="give --format json for machine-readable "
                          "formulas")
-    mech, doc = _symbolic_load(file, k, symbolic, numbers, seconds)
-    decimals = mech.report.get("decimals", 1) if decimals is None else decimals
-    from linkcli.answers.sheet import evaluate
     tol = _tol(tol)
+    mech, doc = _symbolic_load(file, k, symbolic, numbers, seconds, method=method, tol=tol)
+    decimals = mech.report.get("decimals", 1) if decimals is None else decimals
+    from linkcli.runs.sheet import evaluate
     result = evaluate(mech, method=method, tol=tol)
     text = render(result, form, decimals, lang)
     if reactions:   # the joint forces at the positions of the same method
         from linkcli.answers.reaction_table import append_report
         text = append_report(text, mech, form, decimals, method=method, tol=tol)
     if doc is not None:
-        from linkcli.answers.symbolic import append
+        from linkcli.texts.symbolic import append
         text = append(text, form, doc, k, numbers, lang, seconds)
     _emit(text, output)
     for caution in result.cautions:       # after the answers: what the reader should check
@@ -334,26 +341,35 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions, symboli
 @click.option("--pseudocode", is_flag=True,
               help="Print the solving order as pseudo-MATLAB calls of the dyad functions.")
 @click.option("-o", "--output", default=None, help="Write to this file instead of stdout.")
+@click.option("--method", type=click.Choice(["closed", "newton"]), default="closed",
+              show_default=True, help="What is explained: the closed form's decomposition, "
+              "or the constraint equations Newton-Raphson solves together.")
 @SYMBOLIC_OPTION
 @NUMBERS_OPTION
 @SECONDS_OPTION
-def explain(file, k, pseudocode, output, symbolic, numbers, seconds):
+def explain(file, k, pseudocode, output, method, symbolic, numbers, seconds):
     """Print Grübler's count, the Assur decomposition and the solving order.
 
     \b
     Examples:
       linkcli explain mechanisms/padova-2020-07.yaml
       linkcli explain mechanisms/padova-2020-07.yaml --pseudocode
+      linkcli explain mechanisms/triad-class3.yaml --method newton
     """
-    if pseudocode:
-        from linkcli.answers.pseudocode import pseudocode as text
-    else:
-        from linkcli.answers.explain import explain as text
+    if pseudocode and method != "closed":
+        raise InputError("--pseudocode writes the closed form's calls of the dyad functions",
+                         key="--method", hint="drop --method newton for --pseudocode (a "
+                         "class-III group is written as one call solved numerically)")
     _not_an_input(output, file)
     mech, doc = _symbolic_load(file, k, symbolic, numbers, seconds, designed=pseudocode)
-    out = text(mech)
+    if pseudocode:
+        from linkcli.texts.pseudocode import pseudocode as text
+        out = text(mech)
+    else:
+        from linkcli.texts.explain import explain as text
+        out = text(mech, method)
     if doc is not None:
-        from linkcli.answers.symbolic import append
+        from linkcli.texts.symbolic import append
         out = append(out, "exam", doc, k, numbers, seconds=seconds)
     _emit(out, output)
 
@@ -375,7 +391,7 @@ def batch(file, ks, form, decimals, output):
       linkcli batch mechanisms/padova-2020-02.yaml --k 0-9
       linkcli batch mechanisms/padova-2020-01.yaml --k 1,3,5 --format csv
     """
-    from linkcli.answers import batch as batch_mod
+    from linkcli.runs import batch as batch_mod
     from linkcli.input.source import load_file
     from linkcli.answers.formats import fmt
     digits = batch_mod.parse_k(ks)
@@ -428,7 +444,7 @@ def check(paths, verbose, form):
       linkcli check mechanisms/
       linkcli check mechanisms/ --format json > check.json
     """
-    from linkcli.answers.check import as_dict, check_file, collect, summary_lines
+    from linkcli.runs.check import as_dict, check_file, collect, summary_lines
     files = collect(paths or ["mechanisms"])
     if not files:
         raise InputError("no mechanism files found", key="PATHS",
@@ -493,7 +509,7 @@ def plot(file, sweep, frf, modes, free, vary, names, k, output):
         plot_vary(mech, vary, list(names), output)
         return
     if sweep:
-        from linkcli.answers.limits import sweep_names
+        from linkcli.runs.limits.names import sweep_names
         from linkcli.pictures.plotting import plot as make
         make(mech, sweep, sweep_names(mech, list(names), key="--y"), output)
         return
@@ -514,7 +530,8 @@ def plot(file, sweep, frf, modes, free, vary, names, k, output):
 @click.option("--lang", type=click.Choice(["it", "en"]), default="en", show_default=True,
               help="Numbers of --exam with a decimal comma (it) or point (en).")
 @click.option("--method", type=click.Choice(["closed", "newton"]), default="closed",
-              show_default=True, help="How positions are solved (--exam).")
+              show_default=True, help="How positions (and loads) are solved: newton for a "
+              "class-III group.")
 def draw(file, k, output, exam, lang, method):
     """Draw FILE at its driver value: links, sliders, pivots, the vector polygon z_i, loads.
 
@@ -529,10 +546,11 @@ def draw(file, k, output, exam, lang, method):
     _not_an_input(output, file)
     if exam:
         from linkcli.pictures.exam import draw_exam
-        draw_exam(_load(file, k), output, lang=lang, method=method)
+        # the problem as asked: a design question's unknowns are not drawn solved
+        draw_exam(_load(file, k, designed=False), output, lang=lang, method=method)
         return
     from linkcli.pictures.plotting import draw as make
-    make(_load(file, k), output)
+    make(_load(file, k), output, method=method)
 
 
 @cli.command()
@@ -575,7 +593,7 @@ def validate(files, k):
       linkcli validate mechanisms/*.yaml
       linkcli validate - < my-exam.yaml
     """
-    from linkcli.answers.validate import validate_file
+    from linkcli.runs.validate import validate_file
     worst = 0
     for path in files:
         outcome = validate_file(path, k)
@@ -610,6 +628,7 @@ def schema(output):
       linkcli schema
     """
     from importlib.resources import files
+    _not_an_input(output)
     _emit(files("linkcli.input").joinpath("schema.json").read_text(encoding="utf-8").rstrip("\n"),
           output)
 
@@ -685,7 +704,7 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
       linkcli sweep mechanisms/padova-2020-07.yaml --from 100 --to 160 --step 5 --format table
       linkcli sweep mechanisms/polimi-2001-09-18-vibration.yaml --vary ks=50:150:10
     """
-    from linkcli.answers import sweep as sweep_mod
+    from linkcli.runs import sweep as sweep_mod
     _not_an_input(output, file)
     chosen = [n.strip() for n in names.split(",") if n.strip()] if names else None
     if vary is not None:
@@ -695,19 +714,19 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
             raise InputError(f"--vary takes the place of {', '.join(given)}", key="--vary",
                              hint="vary either the driver (--from, --to, --steps) or a "
                              "parameter (--vary NAME=FROM:TO:STEPS)")
-        from linkcli.answers import vary as vary_mod
+        from linkcli.runs import vary as vary_mod
         name, values = vary_mod.parse_vary(vary)
         mech = _load(file, k, designed=False)     # a design question: solved at each value
         sweep_mod.check_every(every)
-        varied = vary_mod.vary(mech, name, values, chosen, method=method, tol=_tol(tol))
-        writer = (lambda put: vary_mod.write(varied, form, decimals, put))
+        variation = vary_mod.Variation(mech, name, values, chosen, method=method, tol=_tol(tol))
+        writer = (lambda put: vary_mod.write(variation, form, decimals, put))
     else:
         if start is None or stop is None:
             raise InputError("give --from and --to (the driver's range), or --vary "
                              "NAME=FROM:TO:STEPS (a parameter's)", key="--from")
-        mech = _load(file, k)
+        mech = _load(file, k, method=method, tol=_tol(tol))
         q = sweep_mod.driver_range(start, stop, steps, step)
-        from linkcli.answers.limits import sweep_names
+        from linkcli.runs.limits.names import sweep_names
         chosen = sweep_names(mech, chosen)      # maxima, strokes ... are not functions of q
         sweep_mod.check_every(every)
         sweeper = sweep_mod.Sweeper(mech, q, chosen, method=method, tol=_tol(tol))
@@ -761,15 +780,15 @@ def limits(file, names, start, stop, form, decimals, k, output):
       linkcli limits mechanisms/polimi-crank-slider.yaml --of c --of cdot
       linkcli limits mechanisms/khurmi-15-3-max-piston-velocity.yaml --of vP --from 0 --to 180
     """
-    from linkcli.answers import limits as limits_mod
+    from linkcli.runs.limits import names as limit_names, search, table
     _not_an_input(output, file)
     mech = _load(file, k)
     decimals = mech.report.get("decimals", 1) if decimals is None else decimals
-    found = [limits_mod.find(mech, name, start, stop)
-             for name in (names or limits_mod.default_names(mech))]
-    _emit(limits_mod.render(found, form, decimals), output)
+    found = [search.find(mech, name, start, stop)
+             for name in (names or limit_names.default_names(mech))]
+    _emit(table.render(found, form, decimals), output)
     if form != "json":
-        for text in limits_mod.messages(found):
+        for text in table.messages(found):
             _echo(text, err=True, prefix="linkcli: ")
 
 
@@ -912,7 +931,7 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, method, o
       linkcli export mechanisms/padova-2020-07.yaml --to html --lang it -o solution.html
     """
     import os
-    from linkcli.answers.batch import parse_k
+    from linkcli.runs.batch import parse_k
     from linkcli.input.source import load_file
     _not_an_input(output, file)             # --force replaces an output, never the input
     if os.path.exists(output) and not force:
@@ -939,7 +958,7 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, method, o
         k = ks[0] if ks else None
         formulas = None
         if symbolic:
-            from linkcli.answers.symbolic import formulas as symbolic_formulas, parse_numbers
+            from linkcli.texts.symbolic import formulas as symbolic_formulas, parse_numbers
             formulas = symbolic_formulas(doc, k, parse_numbers(numbers), seconds)
         text = document(doc, k, target, lang, figure=not no_figure, formulas=formulas)
     _emit(text.rstrip("\n"), output)

@@ -56,6 +56,18 @@ class ExpressionError(InputError):
     """A parameter expression is malformed, unsafe or out of bounds."""
 
 
+class ScaleError(InputError):
+    """A length outside the range the solvers carry in double precision: ``value`` (m) is
+    beyond ``bound`` (m), above it (``side`` 'large') or, for the file's largest length,
+    below it ('small')."""
+
+    def __init__(self, detail: str, *, value: float, bound: float, side: str, **kw):
+        super().__init__(detail, **kw)
+        self.value = value
+        self.bound = bound
+        self.side = side
+
+
 class SolveError(LinkcliError):
     """A valid mechanism that cannot be solved as asked."""
 

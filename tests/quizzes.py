@@ -13,6 +13,7 @@ from html.parser import HTMLParser
 sys.path.insert(0, os.path.dirname(__file__))
 
 from cloze_grammar import parse as parse_cloze  # noqa: E402
+from linkcli.runs.design import asked  # noqa: E402
 from linkcli.exports import moodle  # noqa: E402
 from linkcli.input.source import load_file  # noqa: E402
 from linkcli.model.mechanism import REPORT_SECTIONS  # noqa: E402
@@ -67,7 +68,9 @@ def boxes(question) -> list:
 
 
 def names(mech) -> list:
-    return [n for s in REPORT_SECTIONS for n in mech.report.get(s) or []]
+    """The names of the boxes: the report's, a design question's targets left out (they are
+    data)."""
+    return asked(mech, [n for s in REPORT_SECTIONS for n in mech.report.get(s) or []])
 
 
 class Parts(HTMLParser):

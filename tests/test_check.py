@@ -6,7 +6,7 @@ import os
 import pytest
 
 from conftest import MECHANISMS
-from linkcli.answers.check import agrees
+from linkcli.runs.check import agrees
 from linkcli.cli import main
 from linkcli.input.source import load_file
 

@@ -11,7 +11,7 @@ import re
 import pytest
 
 from conftest import MECHANISMS
-from linkcli.answers.check import agrees, check_file, within
+from linkcli.runs.check import agrees, check_file, within
 from linkcli.cli import main
 from linkcli.model.mechanism import Tolerance
 

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import linkcli
-from linkcli.answers.validate import figure_cautions
+from linkcli.kinematics.solvers import figure_cautions
 from linkcli.cli import main
 from linkcli.errors import NoWorkError
 

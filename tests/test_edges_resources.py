@@ -123,7 +123,7 @@ def _old_render(result, form, every=1, decimals=None):
     (DISPARI, 0, 360, 200, "newton"), (LIFT, 100, 200, 150, "newton")])
 def test_blocks_print_the_same_digits_and_reports_as_one_block(path, start, stop, steps,
                                                                method):
-    from linkcli.answers import sweep as sw
+    from linkcli.runs import sweep as sw
     whole = sw.sweep(linkcli.load(path).model, sw.driver_values(start, stop, steps),
                      method=method, block=10 ** 9)
     assert whole.issues or path == SIXBAR   # ranges that cannot be assembled, toggles
@@ -155,7 +155,7 @@ def _same_but_substeps(got, want):
 
 
 def test_singular_rows_and_ranges_across_block_boundaries(parallelogram):
-    from linkcli.answers import sweep as sw
+    from linkcli.runs import sweep as sw
     mech = linkcli.load(parallelogram).model
     q = np.arange(-90.0, 271.0, 5.0)          # exact toggles at 0 and 180: rows left out
     whole = sw.sweep(mech, q, block=10 ** 9)
@@ -212,7 +212,7 @@ def test_a_branch_point_is_located_to_the_stated_accuracy(parallelogram, method,
     located value must not depend on the path the solver took to the samples (Newton's
     continuation may leave a change point on either branch, as rounding decides): it is
     found on the conditioning, whose two branches mirror each other."""
-    from linkcli.answers import sweep as sw
+    from linkcli.runs import sweep as sw
     got = sw.sweep(linkcli.load(parallelogram).model, sw.driver_values(start, stop, steps),
                    method=method)
     found = [i.lo for i in got.issues if i.kind == "branch"]
@@ -223,7 +223,7 @@ def test_a_branch_point_is_located_to_the_stated_accuracy(parallelogram, method,
 
 
 def test_branch_points_across_block_boundaries(parallelogram):
-    from linkcli.answers import sweep as sw
+    from linkcli.runs import sweep as sw
     for q in (np.linspace(100.0, 260.0, 17), np.linspace(101.0, 259.0, 9),
               np.array([150.0, 210.0])):
         whole = [i.text() for i in sw.sweep(linkcli.load(parallelogram).model, q,
@@ -236,7 +236,7 @@ def test_branch_points_across_block_boundaries(parallelogram):
 
 @pytest.mark.parametrize("steps", [2, 3, 4, 6, 36])
 def test_no_branch_point_where_there_is_none(fourbar, steps):
-    from linkcli.answers import sweep as sw
+    from linkcli.runs import sweep as sw
     for path in (fourbar, SIXBAR, os.path.join(MECHANISMS, "polimi-crank-slider.yaml")):
         mech = linkcli.load(path).model
         unit, factor = mech.units.display("angle", 0)
@@ -321,7 +321,7 @@ def test_lists_of_names_in_messages_are_capped(tmp_path, capsys):
 
 # --- 5. (7d) check: linear in the number of keys ------------------------------------------
 def test_check_builds_each_digit_once(tmp_path, monkeypatch):
-    from linkcli.answers import check
+    from linkcli.runs import check
     keys = "keys:\n" + "".join(f"  - {{k: {j % 10}, values: {{phi2: 22.2}}}}\n"
                                for j in range(300))
     path = tmp_path / "keys.yaml"
@@ -345,7 +345,7 @@ def test_rates_of_loads_are_refused(fourbar, tmp_path, capsys):
                           "2", "--names", "M,Mdot,Mddot")
     assert code == 2 and out == ""
     assert "key '--names'" in err and "'Mdot' is a rate of the load 'M'" in err
-    from linkcli.answers.sweep import sweep
+    from linkcli.runs.sweep import sweep
     with pytest.raises(InputError) as caught:
         sweep(linkcli.load(fourbar).model, [0.0, 10.0], ["Mddot"])
     assert "rate of the load 'M'" in str(caught.value)

@@ -18,7 +18,7 @@ sys.path.insert(0, os.path.dirname(__file__))
 
 import linkcli  # noqa: E402
 from cloze_grammar import parse as parse_cloze  # noqa: E402
-from linkcli.answers.batch import run as batch  # noqa: E402
+from linkcli.runs.batch import run as batch  # noqa: E402
 from linkcli.errors import InputError  # noqa: E402
 from linkcli.exports import moodle, worked  # noqa: E402
 from linkcli.input.source import load_file, load_text  # noqa: E402

@@ -4,7 +4,7 @@ import os
 
 import pytest
 
-from linkcli.answers.check import check_file
+from linkcli.runs.check import check_file
 from conftest import MECHANISMS
 
 FILES = sorted(glob.glob(os.path.join(MECHANISMS, "*.yaml")))

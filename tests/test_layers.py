@@ -23,11 +23,14 @@ ALLOWED = {
     "kinematics": {"errors", "model"},
     "forces": {"errors", "model", "kinematics"},
     "answers": {"errors", "model", "input", "kinematics", "forces"},
-    "pictures": {"errors", "model", "input", "kinematics", "forces", "answers"},
-    "exports": {"errors", "model", "input", "kinematics", "forces", "answers", "pictures"},
-    "api": {"errors", "model", "input", "kinematics", "forces", "answers"},
-    "cli": {"errors", "model", "input", "kinematics", "forces", "answers", "pictures", "exports",
-            "api", "package"},
+    "runs": {"errors", "model", "input", "kinematics", "forces", "answers"},
+    "texts": {"errors", "model", "input", "kinematics", "forces", "answers", "runs"},
+    "pictures": {"errors", "model", "input", "kinematics", "forces", "answers", "runs", "texts"},
+    "exports": {"errors", "model", "input", "kinematics", "forces", "answers", "runs", "texts",
+                "pictures"},
+    "api": {"errors", "model", "input", "kinematics", "forces", "answers", "runs"},
+    "cli": {"errors", "model", "input", "kinematics", "forces", "answers", "runs", "texts",
+            "pictures", "exports", "api", "package"},
     "package": {"errors", "api"},
 }
 
@@ -133,6 +136,32 @@ def test_imports_go_only_down_the_layers():
 
 def test_the_package_has_no_import_cycle():
     assert cycles(graph(PACKAGE, "linkcli")) == []
+
+
+def stated_rule(folder: str) -> set:
+    """The layers a folder's ``__init__.py`` says it may import (its ``May import:`` line)."""
+    import re
+    text = ast.get_docstring(ast.parse(open(os.path.join(PACKAGE, folder, "__init__.py"),
+                                            encoding="utf-8").read())) or ""
+    match = re.search(r"May import:(.*?)(?:\.\s*$|\.\s*\n\s*\n)", text, re.S)
+    assert match, f"linkcli/{folder}/__init__.py does not state what it may import"
+    return set(re.findall(r"``linkcli\.(\w+)``", match.group(1)))
+
+
+@pytest.mark.parametrize("folder", sorted(
+    d for d in os.listdir(PACKAGE) if os.path.isfile(os.path.join(PACKAGE, d, "__init__.py"))))
+def test_each_folder_states_the_rule_that_is_enforced(folder):
+    assert stated_rule(folder) == ALLOWED[folder]
+
+
+def test_architecture_doc_states_the_rules_that_are_enforced():
+    """The table of docs/architecture.md: a row per layer, its imports as enforced here."""
+    import re
+    text = open(os.path.join(ROOT, "docs", "architecture.md"), encoding="utf-8").read()
+    rows = dict(re.findall(r"^\| `(\w+)` \| ([^|]*) \|$", text, re.M))
+    stated = {name: set() if "nothing" in rule else set(re.findall(r"\w+", rule))
+              for name, rule in rows.items() if name in ALLOWED}
+    assert stated == {k: v for k, v in ALLOWED.items() if k != "package"}
 
 
 def _fake_package(tmp_path, files: dict) -> str:

@@ -29,7 +29,7 @@ sys.path.insert(0, os.path.dirname(__file__))
 
 from quizzes import SHIPPED, boxes as _boxes, digit as _digit, export as _export  # noqa: E402
 from quizzes import names as _names, questions as _cloze, shipped  # noqa: E402
-from linkcli.answers.check import check_file  # noqa: E402
+from linkcli.runs.check import check_file  # noqa: E402
 from linkcli.answers.quantities import angle_period  # noqa: E402
 from linkcli.errors import InputError  # noqa: E402
 from linkcli.exports import moodle  # noqa: E402

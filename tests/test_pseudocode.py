@@ -17,7 +17,7 @@ import re
 import pytest
 
 import linkcli
-from linkcli.answers.pseudocode import Call, procedure, render
+from linkcli.texts.pseudocode import Call, procedure, render
 from linkcli.kinematics.solvers import solver_for
 from linkcli.kinematics.topology import Group
 

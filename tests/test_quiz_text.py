@@ -24,7 +24,7 @@ sys.path.insert(0, os.path.dirname(__file__))
 
 from quizzes import METHOD, SHIPPED, Parts, boxes, digit, html_of, questions, shipped  # noqa: E402
 from linkcli.answers.quantities import report_names  # noqa: E402
-from linkcli.answers.sheet import evaluate  # noqa: E402
+from linkcli.runs.sheet import evaluate  # noqa: E402
 from linkcli.input import expressions  # noqa: E402
 from linkcli.input.document import build  # noqa: E402
 from linkcli.input.source import Document, load_file  # noqa: E402
@@ -106,10 +106,14 @@ def test_every_number_the_solver_reads_is_in_the_question(path):
     found = numbers(text, "it")
     names = {**mech.params, "k": mech.k or 0}
     method = METHOD.get(os.path.basename(path), "closed")
+    unknowns = set(mech.design.names) if mech.design is not None else set()
     before, unstated = None, []
     for where, leaf in leaves(doc.data):
         if where[0] in NOT_DATA:
             continue
+        if isinstance(leaf, str) and leaf.strip() in unknowns and \
+                re.search(rf"= {re.escape(leaf.strip())}\b", text):
+            continue        # a design question's unknown: stated by its name, and asked
         try:
             value = expressions.evaluate(leaf, names)
         except Exception:            # noqa: BLE001 - a name, a word: not a number

@@ -25,8 +25,8 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from linkcli.answers.sheet import evaluate
-from linkcli.answers.symbolic import ITEMS, formulas
+from linkcli.runs.sheet import evaluate
+from linkcli.texts.symbolic import ITEMS, formulas
 from linkcli.errors import LinkcliError
 from linkcli.forces import lagrange
 from linkcli.forces.vibration import linearise
@@ -230,7 +230,7 @@ def test_a_rate_formula_with_its_sign_turned_is_caught(monkeypatch):
 TWINS = [("linkcli.kinematics.symbolic", "linkcli.kinematics.closed_form"),
          ("linkcli.forces.symbolic", "linkcli.forces.lagrange"),
          ("linkcli.forces.symbolic", "linkcli.forces.oscillation"),
-         ("linkcli.answers.symbolic", "linkcli.answers.quantities.vibration"),
+         ("linkcli.texts.symbolic", "linkcli.answers.quantities.vibration"),
          ("linkcli.input.symbols", "linkcli.input.document")]
 
 

@@ -8,7 +8,7 @@ import pytest
 import linkcli
 from linkcli.cli import main
 from linkcli.errors import InputError
-from linkcli.answers.sweep import driver_values, sweep
+from linkcli.runs.sweep import driver_values, sweep
 
 from conftest import MECHANISMS
 

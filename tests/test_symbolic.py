@@ -21,7 +21,7 @@ import sympy as sp
 
 import linkcli
 from conftest import MECHANISMS
-from linkcli.answers.symbolic import as_dict, formulas
+from linkcli.texts.symbolic import as_dict, formulas
 from linkcli.forces.lagrange import Lagrangian
 from linkcli.forces.vibration import linearise, modes
 from linkcli.input.document import build
@@ -229,7 +229,7 @@ def test_worked_solution_writes_the_formulas_as_mathml_and_latex(tmp_path):
 
 def test_text_reads_as_the_exam_writes_it():
     f, _ = of("polimi-2001-09-18-vibration.yaml")
-    from linkcli.answers.symbolic import to_text
+    from linkcli.texts.symbolic import to_text
     text = to_text(f)
     for line in ("  T = m L^2 phi'^2 + m L^2 phi' theta' cos(phi - theta) + m L^2 theta'^2/2",
                  "  [M] = [ 2 m L^2   m L^2 ]",
@@ -273,7 +273,7 @@ report: {vibration: [w1]}
 def test_an_equilibrium_without_closed_form_is_the_numeric_one_said_so():
     """kt (th - th0) + m g L cos(th) = 0 has no closed form: the equilibrium stands as the
     symbol th_e with its numeric value, the formulas keep it, and the numbers agree."""
-    from linkcli.answers.symbolic import to_text
+    from linkcli.texts.symbolic import to_text
     from linkcli.input.source import load_text
     doc = load_text(TWISTED, "twisted.yaml")
     f = formulas(doc)

@@ -20,7 +20,7 @@ import pytest
 
 import linkcli
 from conftest import MECHANISMS
-from linkcli.answers.check import check_file
+from linkcli.runs.check import check_file
 
 RTOL = 1e-7
 FT = 12.0                     # inches per foot (lengths in inches, answers in feet)

@@ -9,7 +9,7 @@ import os
 import pytest
 
 import linkcli
-from linkcli.answers.check import check_file
+from linkcli.runs.check import check_file
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 G = 9.81

@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 import scipy.linalg as sla
 
-from linkcli.answers.check import check_file
+from linkcli.runs.check import check_file
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from vibration_cases import close, keys_agree, shipped, solve_file  # noqa: E402

@@ -18,8 +18,8 @@ import pytest
 import sympy as sp
 from scipy.optimize import fsolve
 
-from linkcli.answers import budget as budget_module
-from linkcli.answers.symbolic import ITEMS, as_dict, formulas, to_text
+from linkcli.texts import budget as budget_module
+from linkcli.texts.symbolic import ITEMS, as_dict, formulas, to_text
 from linkcli.cli import main
 from linkcli.forces import symbolic as fs
 from linkcli.input.source import load_file

@@ -201,7 +201,7 @@ def test_a_digit_given_twice_is_refused(command, ks, digit):
 
 
 def test_a_k_range_is_checked_before_it_is_made():
-    from linkcli.answers.batch import parse_k
+    from linkcli.runs.batch import parse_k
     from linkcli.errors import InputError
     with pytest.raises(InputError, match="digit 0-9, got 999999999999"):
         parse_k("0-999999999999")       # a range of 10^12 digits was listed, then checked
@@ -328,7 +328,7 @@ def test_rounding_noise_of_a_zero_is_printed_as_zero():
     it is 0 in every format.  A value alone in its unit keeps its value."""
     import json
     from linkcli.answers.formats import render
-    from linkcli.answers.sheet import evaluate
+    from linkcli.runs.sheet import evaluate
     from linkcli.api import load
     result = evaluate(load(VIB).model)
     result.values["N"] = -5.55e-15                   # the zero spring force, with noise
@@ -440,7 +440,7 @@ def test_the_units_table_is_the_code_s():
 
 def test_point_masses_are_read_in_the_file_s_mass_unit():
     """1000 g on 100 N/m is 1 kg: omega_n = 10 rad/s, as docs/dynamics.md says."""
-    from linkcli.answers.sheet import evaluate
+    from linkcli.runs.sheet import evaluate
     text = open(os.path.join(DATA, "undamped-forced.yaml"), encoding="utf-8").read()
     grams = linkcli_loads(text.replace("units: {length: m, angle: deg}",
                                        "units: {length: m, angle: deg, mass: g}")
@@ -468,7 +468,7 @@ def test_a_torque_on_an_actuator_and_a_driver_force_follow_docs_conventions():
     |B - O| = 40 mm at |B - A| = q = 130 mm (the branch of the figure)."""
     import cmath
     import math
-    from linkcli.answers.sheet import evaluate
+    from linkcli.runs.sheet import evaluate
     from linkcli.api import load
     result = evaluate(load(os.path.join(DATA, "torque-on-actuator.yaml")).model)
     a, r, q, qdot, moment = complex(-0.1, 0.03), 0.04, 0.13, 0.01, 2.0

@@ -195,7 +195,7 @@ def test_each_arrangement_decomposes_into_its_dyad(name, kinds):
 
 
 def test_explain_names_the_groups_without_their_virtual_points():
-    from linkcli.answers.explain import explain
+    from linkcli.texts.explain import explain
     slot = explain(linkcli.loads(_off_pivot_text(), name="slot.yaml").model)
     assert "dyad RPR: KDE (slot off its pivot) from K (KDE) and A (pin)" in slot
     yoke = explain(NAMED["yoke"].model)

@@ -255,7 +255,7 @@ def close(got, expected, rtol=RTOL, atol=0.0):
 
 def keys_agree(path):
     """``check`` of the file ``path``: it solves and no printed value fails (the report)."""
-    from linkcli.answers.check import check_file
+    from linkcli.runs.check import check_file
     report = check_file(path)
     assert report.error is None, report.error
     assert not [o for o in report.outcomes if o.status == "fail"]

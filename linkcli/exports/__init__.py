@@ -2,7 +2,9 @@
 
 ``moodle`` writes a Moodle XML question bank (one embedded-answers question per
 matricola digit), ``worked`` a worked solution as one self-contained HTML page
-or Markdown.  They draw the figure, so they sit above ``pictures``.  May
-import every layer below: errors, model, input, kinematics, forces, answers,
-pictures.
+or Markdown.  They draw the figure and write the texts, so they sit above
+``pictures`` and ``texts``.  A new document goes here.
+May import: ``linkcli.errors``, ``linkcli.model``, ``linkcli.input``,
+``linkcli.kinematics``, ``linkcli.forces``, ``linkcli.answers``, ``linkcli.runs``,
+``linkcli.texts``, ``linkcli.pictures``.
 """

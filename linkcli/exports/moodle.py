@@ -2,7 +2,7 @@
 
 Each question states the problem with that digit's data: the title, the file's
 ``statement`` (added to, not instead of, the data), every datum of the model in words
-(:mod:`linkcli.answers.statement`), the exam's figure (:mod:`linkcli.pictures.exam`:
+(:mod:`linkcli.texts.data`), the exam's figure (:mod:`linkcli.pictures.exam`:
 the data drawn, no answer), how to write the answers, and one NUMERICAL box per
 reported quantity, in the order and sections of the exam's table::
 
@@ -53,11 +53,15 @@ from fractions import Fraction
 
 import numpy as np
 
-from linkcli.answers.formats import fmt
+from linkcli.runs import design
+from linkcli.runs.design import asked
+from linkcli.answers.formats import fmt, without_noise
 from linkcli.answers.formats import heading as section_heading
 from linkcli.answers.quantities import angle_period, report_names
-from linkcli.answers.sheet import evaluate
-from linkcli.answers.statement import data_lines, describe, number
+from linkcli.runs.sheet import evaluate
+from linkcli.texts.amounts import number
+from linkcli.texts.data import data_lines
+from linkcli.texts.quantities import describe
 from linkcli.errors import InputError, LinkcliError, SolveError
 from linkcli.exports.text import refuse_unfit, visible
 from linkcli.input.document import build
@@ -99,8 +103,8 @@ def weights(mech) -> tuple[dict, int]:
     One per box without ``quiz.points``; the points per box when they are whole numbers
     (the mark is then the sum of the points); else the smallest weights whose sections
     keep their share of ``quiz.points`` within SHARE (see the module)."""
-    sections = [s for s in REPORT_SECTIONS if mech.report.get(s)]
-    counts = {s: len(mech.report[s]) for s in sections}
+    sections = [s for s in REPORT_SECTIONS if _asked(mech, s)]
+    counts = {s: len(_asked(mech, s)) for s in sections}
     points = mech.quiz.points
     if not points:
         return {s: 1 for s in sections}, sum(counts.values())
@@ -263,7 +267,7 @@ def instructions(mech, result, places, lang) -> str:
     words = WORDS[lang]
     counted = words["places"][min(places, 2)].format(n=places)
     lines = [words["separator"].format(places=counted)]
-    units = {result.units[n] for n in report_names(mech)
+    units = {result.units[n] for n in asked(mech, report_names(mech))
              if angle_period(mech, n, result.units[n]) is not None}
     if units:
         turn, example = ("360", (330, -30)) if "deg" in units else \
@@ -274,19 +278,22 @@ def instructions(mech, result, places, lang) -> str:
     return "<p>" + " ".join(text(line) for line in lines) + "</p>"
 
 
-def question_html(mech, result, places, boxes, lang, figure_name) -> str:
+def question_html(mech, result, places, boxes, lang, figure_name, solution=None) -> str:
+    """The question's text: the data (a design question's unknowns and targets as
+    ``solution`` states them), the figure, how to answer, and the boxes by section."""
     words = WORDS[lang]
     parts = [f"<p><b>{text(mech.title)}</b></p>"]
     if mech.statement:
         parts += [f"<p>{text(p.strip())}</p>" for p in mech.statement.split("\n\n") if p.strip()]
     parts.append(f"<p><b>{words['data']}</b></p><ul>" +
-                 "".join(f"<li>{text(line)}</li>" for line in data_lines(mech, lang)) + "</ul>")
+                 "".join(f"<li>{text(line)}</li>" for line in data_lines(mech, lang, solution))
+                 + "</ul>")
     if figure_name:
         parts.append(f'<p><img src="{plugin_link(figure_name)}" alt="{text(words["figure"])}" '
                      'style="max-width: 100%"></p>')
     parts.append(instructions(mech, result, places, lang))
     for section in REPORT_SECTIONS:
-        names = mech.report.get(section) or []
+        names = _asked(mech, section)
         if not names:
             continue
         heading = section_heading(mech, section, lang)
@@ -297,9 +304,19 @@ def question_html(mech, result, places, boxes, lang, figure_name) -> str:
     return "".join(parts)
 
 
+def _asked(mech, section) -> list:
+    """The boxes of a section of the report: a design question's targets are data, not
+    asked back."""
+    return asked(mech, mech.report.get(section) or [])
+
+
 def _solved(mech, method):
+    """(the answers of ``mech`` by ``method``, a zero's rounding noise 0 as solve prints
+    it; its design question's solution or None)."""
     try:
-        return evaluate(mech) if method == "closed" else evaluate(mech, method=method)
+        result = evaluate(mech) if method == "closed" else evaluate(mech, method=method)
+        return without_noise(result), (design.solve(mech, evaluate, method)
+                                       if design.unsolved(mech) else None)
     except LinkcliError as exc:
         cls = SolveError if isinstance(exc, SolveError) else InputError
         raise cls(_digit(mech) + exc.detail, file=exc.file, key=exc.key, line=exc.line,
@@ -315,7 +332,7 @@ def _boxes(mech, result, places, tolerance, file_k) -> list:
     chosen, _ = weights(mech)
     base = quiz_tolerance(mech, places, tolerance)
     return [box(mech, result, name, chosen[section], places, base, file_k)
-            for section in REPORT_SECTIONS for name in mech.report.get(section) or []]
+            for section in REPORT_SECTIONS for name in _asked(mech, section)]
 
 
 def _checked(mech, result, places, tolerance, file_k, decimals) -> list:
@@ -360,7 +377,7 @@ def export(doc, ks, decimals=None, tolerance=None, lang="it", figure=True,
     ET.SubElement(category, "text").text = f"$course$/top/linkcli/{name}"
     for k in (ks if ks is not None else [None]):
         mech = build(doc, k)
-        result = _solved(mech, method)
+        result, solution = _solved(mech, method)
         places = mech.report.get("decimals", 1) if decimals is None else decimals
         boxes = _checked(mech, result, places, tolerance, base.k, decimals)
         figure_name = f"{name}-k{mech.k}.png" if mech.k is not None else f"{name}.png"
@@ -369,7 +386,7 @@ def export(doc, ks, decimals=None, tolerance=None, lang="it", figure=True,
             f"{mech.title}" + (f" (k = {mech.k})" if mech.k is not None else "")
         qt = ET.SubElement(q, "questiontext", format="html")
         ET.SubElement(qt, "text").text = question_html(
-            mech, result, places, boxes, lang, figure_name if picture else None)
+            mech, result, places, boxes, lang, figure_name if picture else None, solution)
         if picture:
             f = ET.SubElement(qt, "file", name=figure_name, path="/", encoding="base64")
             f.text = base64.b64encode(picture(mech)).decode("ascii")

@@ -19,10 +19,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.answers.explain import explain
+from linkcli.runs import design
+from linkcli.texts.explain import explain
 from linkcli.answers.formats import fmt, heading
-from linkcli.answers.sheet import evaluate
-from linkcli.answers.statement import data_lines
+from linkcli.runs.sheet import evaluate
+from linkcli.texts.data import data_lines
 from linkcli.exports.text import fence, markdown, refuse_unfit, visible
 from linkcli.input.document import build
 from linkcli.kinematics.solvers import solver_for
@@ -68,7 +69,7 @@ def _xy(z, f):
 def document(doc, k=None, target="html", lang="en", figure=True, formulas=None) -> str:
     """The worked solution of the loaded document ``doc`` at digit ``k`` (None: the file's
     own) as one HTML page (``target`` 'html', with the figure) or Markdown; ``formulas``
-    (``answers.symbolic.formulas``) adds the answers in symbols."""
+    (``texts.symbolic.formulas``) adds the answers in symbols."""
     refuse_unfit(doc)
     items = blocks(build(doc, k), lang, figure=figure and target == "html")
     if formulas is not None:
@@ -77,21 +78,26 @@ def document(doc, k=None, target="html", lang="en", figure=True, formulas=None) 
 
 
 def blocks(mech, lang="en", figure=True) -> list:
-    """The worked solution of ``mech`` (at its own digit and driver value) as blocks."""
+    """The worked solution of ``mech`` (at its own digit and driver value) as blocks; a
+    design question's data state its unknowns and targets, its analysis and figure are
+    those of the mechanism built with the unknowns' solution, and its results give the
+    unknowns, not the targets back."""
     w = WORDS[lang]
     result = evaluate(mech)
+    solution = design.solve(mech, evaluate) if design.unsolved(mech) else None
+    solved = solution.mech if solution is not None else mech
     out = [Block("heading", mech.title)]
     if mech.statement:
         out += [Block("text", p.strip()) for p in mech.statement.split("\n\n") if p.strip()]
-    out += [Block("heading", w["data"]), Block("lines", data_lines(mech, lang))]
+    out += [Block("heading", w["data"]), Block("lines", data_lines(mech, lang, solution))]
     out += [Block("heading", w["structure"]),
             Block("lines", explain(mech).splitlines()[2:])]
     if mech.elements is None:
-        out += _kinematics(mech, w)
+        out += _kinematics(solved, w)
     out.append(Block("heading", w["results"]))
     decimals = mech.report.get("decimals", 1)
     for section in REPORT_SECTIONS:
-        names = mech.report.get(section) or []
+        names = design.asked(mech, mech.report.get(section) or [])
         if names:
             rows = [[n, fmt(np.ravel(result.values[n])[0], decimals), result.units[n]]
                     for n in names]
@@ -100,7 +106,7 @@ def blocks(mech, lang="en", figure=True) -> list:
     if figure:
         from linkcli.exports.figure import figure_bytes
         out += [Block("heading", w["figure"]),
-                Block("figure", figure_bytes(mech, "svg").decode("utf-8"))]
+                Block("figure", figure_bytes(solved, "svg").decode("utf-8"))]
     return out
 
 
@@ -190,10 +196,10 @@ def _statics(mech, solver, kin, w):
 
 
 def with_formulas(items, formulas, lang="en") -> list:
-    """The worked solution with the formulas of ``formulas`` (``answers.symbolic``) before
+    """The worked solution with the formulas of ``formulas`` (``texts.symbolic``) before
     its results: each a 'formula' block, written as MathML (with its LaTeX) in HTML and as
     LaTeX in Markdown."""
-    from linkcli.answers.symbolic import Entry, sections
+    from linkcli.texts.symbolic import Entry, sections
     rank = formulas.ranking()
     out = []
     for title, entries in sections(formulas, lang):
@@ -208,7 +214,7 @@ def with_formulas(items, formulas, lang="en") -> list:
 def formula_latex(entry, rank) -> str:
     """An Entry as one LaTeX equation."""
     import sympy as sp
-    from linkcli.answers import notation
+    from linkcli.texts import notation
     if entry.reads == "equation":
         left, right = entry.value
         return f"{notation.latex(left, rank)} = {notation.latex(right, rank)}"
@@ -226,7 +232,7 @@ def formula_latex(entry, rank) -> str:
 def formula_mathml(entry, rank) -> str:
     """An Entry as a display <math> element, its LaTeX kept as the annotation."""
     import sympy as sp
-    from linkcli.answers import notation
+    from linkcli.texts import notation
     if entry.reads == "equation":
         left, right = (notation.mathml_body(x, rank) for x in entry.value)
         return _math(f"{left}<mo>=</mo>{right}", formula_latex(entry, rank))

@@ -121,9 +121,9 @@ def static_preloads(lag: Lagrangian, free) -> dict:
             file=lag.mech.file, hint="give the other springs a free length or a preload, and "
             "'preload: static' to one spring per coordinate, between points of different "
             "bodies")
-    forces, *_ = np.linalg.lstsq(A, b, rcond=None)
-    residual = A @ forces - b
-    scale = load_scale(lag, terms, free)
+    scale = load_scale(lag, terms, free)      # each equation over its load scale: a
+    forces, *_ = np.linalg.lstsq(A / scale[:, None], b / scale, rcond=None)   # length's
+    residual = A @ forces - b                 # and an angle's weigh alike at any size
     if np.any(np.abs(residual) > TOL * scale):
         worst = int(np.argmax(np.abs(residual) / scale))
         raise EquilibriumError(
@@ -238,7 +238,6 @@ def _descend(lag, start: Terms, free, preloads) -> Equilibrium:
     """A minimum of V from the figure by a trust-region Newton method (module docstring)."""
     c = lag.scales[free]
     figure = start.q
-    ix = np.ix_(free, free)
 
     refused = []
 
@@ -251,10 +250,11 @@ def _descend(lag, start: Terms, free, preloads) -> Equilibrium:
             refused[:] = [exc]
             return None
 
-    noise = 1e-12 * float(np.sum(load_scale(lag, start, free) * c))
+    energy = _energy(lag, start, free, c)
+    noise = 1e-12
     y, t, radius = np.zeros(len(free)), start, 0.25
     for step in range(1, STEPS + 1):
-        g, H = -t.Q[free] * c, c[:, None] * t.K[ix] * c[None, :]
+        g, H = _model(t, free, c, energy)
         p = _trust_step(g, H, radius)
         if np.max(np.abs(y + p)) > REACH:
             raise _unbounded(lag, start, free, y + p)
@@ -263,13 +263,13 @@ def _descend(lag, start: Terms, free, preloads) -> Equilibrium:
         if new is None:
             radius = 0.25 * np.linalg.norm(p)
             continue
-        fall = t.V - new.V
-        closer = np.linalg.norm(new.Q[free] * c) < np.linalg.norm(g)
+        fall = (t.V - new.V) / energy
+        closer = np.linalg.norm(new.Q[free] * c / energy) < np.linalg.norm(g)
         if fall > 0.1 * predicted or (closer and fall >= -noise):
             y, t = y + p, new
             result = _result(lag, t, free, preloads, step)
             if result.relative <= TOL and result.stability in ("stable", "neutral"):
-                return _polish(lag, result, at, c)
+                return _polish(lag, result, at, c, energy)
         ratio = fall / predicted if predicted > 0 else -1.0
         if ratio < 0.25:
             radius = 0.25 * np.linalg.norm(p)
@@ -282,19 +282,32 @@ def _descend(lag, start: Terms, free, preloads) -> Equilibrium:
     return result
 
 
-def _polish(lag, result: Equilibrium, at, c) -> Equilibrium:
+def _energy(lag, start: Terms, free, c) -> float:
+    """The energy the descent measures V in: the load scales times the coordinates' scales
+    (J), so that its gradient and Hessian are numbers of order one whatever the size (their
+    squares in the norms would overflow a double from sizes of about 1e75 m on)."""
+    return float(np.sum(load_scale(lag, start, free) * c)) or 1.0
+
+
+def _model(t: Terms, free, c, energy):
+    """The gradient -c Q_f and the Hessian c K_ff c of V in the scaled coordinates, over
+    ``energy``."""
+    ix = np.ix_(free, free)
+    return -t.Q[free] * c / energy, c[:, None] * t.K[ix] * c[None, :] / energy
+
+
+def _polish(lag, result: Equilibrium, at, c, energy) -> Equilibrium:
     """Newton steps from an accepted equilibrium while they reduce the residual: the answer is
     then as exact as the rounding of Q allows, not just within TOL."""
     free = result.free
     if result.stability != "stable":
         return result
-    ix = np.ix_(free, free)
     y = (result.q[free] - lag.figure[free]) / c
     for _ in range(4):
         t = result.terms
-        g, H = -t.Q[free] * c, c[:, None] * t.K[ix] * c[None, :]
+        g, H = _model(t, free, c, energy)
         new = at(y - np.linalg.solve(H, g))
-        if new is None or np.linalg.norm(new.Q[free] * c) >= np.linalg.norm(g):
+        if new is None or np.linalg.norm(new.Q[free] * c / energy) >= np.linalg.norm(g):
             break
         y = y - np.linalg.solve(H, g)
         result = _result(lag, new, free, result.preloads, result.steps + 1)

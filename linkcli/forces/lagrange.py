@@ -101,7 +101,7 @@ class Lagrangian:
         self.elements = mech.elements or el.Elements()
         self.dyn = mech.dynamics
         self.figure = np.array([c.value for c in mech.coordinates], dtype=float)
-        points = np.array(list(mech.fixed.values()) + list(mech.moving.values()))
+        points = np.array(mech.figure_points)
         self.size = float(np.max(np.abs(points - points.mean()))) or 1.0   # m
         self.scales = np.array([1.0 if c.kind == "angle" else self.size
                                 for c in mech.coordinates])
@@ -372,16 +372,31 @@ class Lagrangian:
         return V
 
 
-def require_mass(mech, M, free) -> None:
+def energy_units(A, scales):
+    """D A D, D = diag(``scales``) (1 rad for an angle, the mechanism's size for a length):
+    a matrix of the coordinates (M, K, R) whose entries mix kg with kg m^2 (N/m with N m)
+    brought to one unit, so that its entries compare whatever the length unit."""
+    d = np.asarray(scales, float)
+    return A * (d[:, None] * d[None, :])
+
+
+def require_mass(mech, M, free, scales) -> None:
     """Refuse a mass matrix that is not positive definite on the free coordinates,
-    naming the coordinate that carries no mass."""
-    Mf = M[np.ix_(free, free)]
+    naming the coordinate that carries no mass.
+
+    The test is made on D M D, D = diag(``scales``) (1 rad for an angle, the mechanism's
+    size for a length): every entry then has one unit (kg m^2), so that the smallest
+    eigenvalue compares with the largest diagonal entry whatever the length unit; M itself
+    mixes kg (lengths) with kg m^2 (angles), and a small mechanism's inertias would read as
+    no mass against its translations' masses."""
+    Mf = energy_units(M[np.ix_(free, free)], np.asarray(scales, float)[free])
     values, vectors = np.linalg.eigh(Mf)
     scale = max(float(np.max(np.abs(np.diag(Mf)))), 1e-300)
     if values[0] <= 1e-12 * scale:
         index = free[int(np.argmax(np.abs(vectors[:, 0])))]
         name = mech.coordinates[index].name
         raise SolveError(f"coordinate {name} carries no mass: the mass matrix is singular "
-                         f"(smallest eigenvalue {values[0]:.3g} against {scale:.3g})",
+                         f"(smallest eigenvalue {values[0]:.3g} against {scale:.3g}, in kg m^2 "
+                         "of the coordinates made dimensionless by the mechanism's size)",
                          file=mech.file, hint=f"give a mass or inertia to a body that moves "
                          f"with {name}, or make {name} an imposed coordinate")

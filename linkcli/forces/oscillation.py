@@ -15,8 +15,8 @@ With M, K, R the matrices of the free coordinates about the equilibrium (forces.
   support terms;
 - the largest value of a linear function y = c . x of the free vibration from x0, v0: by
   superposition of the modes; undamped, y(t) = sum_k C_k cos(omega_k t - phi_k), whose
-  largest value is sum_k C_k (reached when the modes come into phase: at once for one mode
-  or commensurate phases, approached without end for incommensurate frequencies); damped,
+  largest value is sum_k C_k (reached when the modes come into phase: at once for one mode,
+  at t = 0 for a start in phase, approached without end for incommensurate frequencies); damped,
   the extremes of y(t) (roots of y'(t) = c . v(t) between samples of the motion, by Brent's
   method) until the envelope sum_k |r_k| e^{Re s_k t} of the modal expansion (or the energy
   bound |y| <= sqrt(2 E c^T K^-1 c)) falls below the largest found.
@@ -156,15 +156,24 @@ def _signed(offset, amount) -> float:
     return offset + amount if offset >= 0 else offset - amount
 
 
+#: a mode's share of the largest value below this fraction of it is rounding (a mode the
+#: answer does not see), and so is a start this fraction short of the largest value
+ROUNDING = 1e-10
+
+
 def _undamped(M, K, c, x0, v0, offset) -> Largest:
     """By the modes: c . x(t) = sum_k C_k cos(omega_k t - phi_k) (+ what a mode without
-    stiffness keeps still), C_k = |c . u_k| sqrt(a_k^2 + (b_k / omega_k)^2)."""
+    stiffness keeps still), C_k = |c . u_k| sqrt(a_k^2 + (b_k / omega_k)^2).  The largest,
+    sum_k C_k, is reached where the modes come into phase: always for one mode (the others'
+    C_k below :data:`ROUNDING` of it), at t = 0 where the start is in phase (c . x0 is
+    +-sum_k C_k: released from rest in a shape of like-signed modal terms), else only
+    approached (incommensurate frequencies)."""
     from scipy.linalg import eigh
     values, vectors = eigh(K, M)          # mass-normalised: U^T M U = I
     top = max(float(np.max(np.abs(values))), 1e-300)
     a, b = vectors.T @ M @ x0, vectors.T @ M @ v0
     reach = c @ vectors
-    amplitudes, frequencies = [], set()
+    amplitudes, frequencies, start = [], [], 0.0
     for k, lam in enumerate(values):
         if lam <= 1e-12 * top:            # no stiffness: x stays at a (from rest) or drifts
             if abs(reach[k] * b[k]) > 0:
@@ -176,14 +185,19 @@ def _undamped(M, K, c, x0, v0, offset) -> Largest:
             continue
         w = np.sqrt(lam)
         amplitudes.append(abs(reach[k]) * np.hypot(a[k], b[k] / w))
-        if amplitudes[-1] > 0:
-            frequencies.add(float(w))
+        frequencies.append(float(w))
+        start += reach[k] * a[k]
     total = float(sum(amplitudes))
     if total == 0:
         return Largest(float(offset), True, 0.0)
-    distinct = sorted(frequencies)
+    distinct = sorted(w for w, amount in zip(frequencies, amplitudes)
+                      if amount > ROUNDING * total)
     one = all(f2 - f1 <= 1e-12 * f2 for f1, f2 in zip(distinct, distinct[1:]))
-    return Largest(_signed(offset, total), one, None)
+    value = _signed(offset, total)
+    at_start = offset + float(np.copysign(total, start))
+    if not one and abs(start) >= (1 - ROUNDING) * total and abs(at_start) >= abs(value):
+        return Largest(at_start, True, 0.0)
+    return Largest(value, one, None)
 
 
 def _damped(M, K, R, c, x0, v0, offset) -> Largest:

@@ -15,7 +15,8 @@ _fs blocks coupling the two.
 - Damped: the eigenvalues s of [[0, I], [-M^-1 K, -M^-1 R]], two per undamped mode,
   paired with the modes through their eigenvectors (``damped``); a mode's roots give
   omega_n = sqrt(s1 s2), zeta = -(s1 + s2) / (2 omega_n) and, for a conjugate pair,
-  omega_d = |Im s|; two real roots are an overdamped mode (two decay rates).
+  omega_d = |Im s|; two real roots are an overdamped mode (two decay rates), one double
+  root (to within CRITICAL of its size) a critically damped one (zeta = 1).
 - Steady state: X = (K - Omega^2 M + i Omega R)^-1 F, vectorised over Omega.
 - Free response: z(t) = expm(A t) z0 for the state z = (x, x').
 - Nonlinear: M(q) q'' = Q(q) - R(q) q' - c(q, q') + forcing(t), integrated by
@@ -29,7 +30,7 @@ import numpy as np
 
 from linkcli.errors import SolveError
 from linkcli.forces.equilibrium import Equilibrium, equilibrium
-from linkcli.forces.lagrange import Lagrangian, require_mass
+from linkcli.forces.lagrange import Lagrangian, energy_units, require_mass
 from linkcli.model.units import DIMENSIONS
 
 #: an eigenvalue of K below -UNSTABLE times the largest is a loss of stability
@@ -83,7 +84,7 @@ def linearise(lag: Lagrangian) -> Linear:
                          file=mech.file, hint="leave at least one coordinate without a support motion")
     t = eq.terms
     ix = np.ix_(free, free)
-    require_mass(mech, t.M, free)
+    require_mass(mech, t.M, free, lag.scales)
     elements = mech.elements
     supports = np.zeros(len(imposed), dtype=complex)
     for s in (elements.supports.values() if elements else ()):
@@ -168,9 +169,19 @@ def _normalise(vectors, size, still):
     return out + 0.0               # no -0: a coordinate that does not move is 0
 
 
-#: a conjugate pair of roots whose imaginary part is below CRITICAL times its magnitude is a
-#: critically damped mode split by rounding (a double root is known to about sqrt(eps))
+#: a mode whose two roots are CRITICAL of their size apart, |s1 - s2| <= CRITICAL (|s1| +
+#: |s2|), is critically damped: a double root s = -omega_n split by rounding (a double root
+#: of the state matrix is known to about sqrt(eps) = 1.5e-8 of its size) into a conjugate
+#: pair or two real roots.  Dimensionless; as zeta, |zeta - 1| below about 1e-15, since
+#: |s1 - s2| / (|s1| + |s2|) = sqrt(zeta^2 - 1) / zeta for two real roots
 CRITICAL = 1e-7
+
+
+def critical(roots) -> np.ndarray:
+    """Per mode (a row of ``roots``, its two roots), whether it is critically damped: its
+    roots one double root to within :data:`CRITICAL`."""
+    size = np.abs(roots[:, 0]) + np.abs(roots[:, 1])
+    return (size > 0) & (np.abs(roots[:, 0] - roots[:, 1]) <= CRITICAL * size)
 
 
 @dataclass
@@ -184,6 +195,11 @@ class Damped:
     roots: np.ndarray        # (n, 2) complex
     oscillates: np.ndarray   # per mode: a conjugate pair of roots (not critically damped)
     share: np.ndarray        # per mode: its roots' share of that undamped mode (1: proportional)
+
+    @property
+    def critical(self):
+        """Per mode: critically damped (zeta = 1, one double root: :func:`critical`)."""
+        return critical(self.roots)
 
     @property
     def omega_n(self):
@@ -248,7 +264,7 @@ def damped(lin: Linear, found: Modes) -> Damped:
             two.sort(key=lambda r: abs(s[r]))
             roots[k] = s[two].real
             got[k] = float(np.mean(share[two, k]))
-    oscillates = np.abs(roots[:, 0].imag) > CRITICAL * np.abs(roots[:, 0])
+    oscillates = (roots[:, 0].imag != 0) & ~critical(roots)
     return Damped(roots, oscillates, got)
 
 
@@ -263,13 +279,16 @@ def dynamic_matrix(lin: Linear, omega):
     """D(Omega) = K - Omega^2 M + i Omega R for each Omega, and where D is singular:
     |det D| against the product over the rows of the magnitudes of their terms
     (sum_j |K_ij| + Omega^2 |M_ij| + Omega |R_ij|) below SINGULAR, an undamped resonance.
-    The ratio is dimensionless and sees the cancellation of K against Omega^2 M."""
+    Both are taken in energy units (``lagrange.energy_units``: a row's terms of a length
+    and of an angle coordinate in one unit), so the ratio is dimensionless whatever the
+    length unit, and sees the cancellation of K against Omega^2 M."""
     w = np.asarray(omega, dtype=float)[..., None, None]
     D = lin.K - w ** 2 * lin.M + 1j * w * lin.R
-    scale = np.abs(lin.K) + w ** 2 * np.abs(lin.M) + w * np.abs(lin.R)
-    rows = np.prod(np.sum(scale, axis=-1), axis=-1)
-    ratio = np.abs(np.linalg.det(D)) / np.where(rows > 0, rows, 1.0)
-    return D, ratio < SINGULAR
+    d = np.asarray(lin.lag.scales, float)[lin.free]
+    scale = energy_units(np.abs(lin.K) + w ** 2 * np.abs(lin.M) + w * np.abs(lin.R), d)
+    rows = np.sum(scale, axis=-1)[..., None]       # each row over its magnitude before the
+    ratio = np.abs(np.linalg.det(energy_units(D, d) / np.where(rows > 0, rows, 1.0)))
+    return D, ratio < SINGULAR                      # determinant: no power of the size in it
 
 
 def response(lin: Linear, omega):

@@ -84,7 +84,7 @@ class DerivedSection:
                              hint="an expression may read other expressions, never back")
         rates = 2
         for used in Expression(q.a).names:
-            base, level = split_rate(used)
+            base, level = split_rate(used, quantities)
             if used in self.names and used not in quantities:      # a parameter, or k
                 continue
             if base in getattr(self, "failed", ()):
@@ -119,7 +119,7 @@ class DerivedSection:
         path = ("quantities", q.name)
         dims = {}
         for used in Expression(q.a).names:
-            if split_rate(used)[0] in mech.quantities:
+            if split_rate(used, mech.quantities)[0] in mech.quantities:
                 try:
                     dims[used] = dimension(mech, used)
                 except (KeyError, AttributeError, StopIteration):

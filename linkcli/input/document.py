@@ -91,6 +91,7 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSectio
             report["design"] = design.names
         keys = self.block(self.keys, data, quantities, loads, pool, report) or ()
         self.check_points_used(pool, bodies, actuators, fixed)
+        self.large_enough(units)
         if self.errors:
             raise InputErrors(self.errors)
         title = str(data.get("title", self.doc.name))

@@ -88,7 +88,7 @@ class FindSection:
         return Unknown(name, lo, hi, unit=unit, line=line)
 
     def target(self, name, value, path, quantities) -> Target:
-        base, order = split_rate(name)
+        base, order = split_rate(name, quantities)
         if base not in quantities or order > quantities[base].rates:
             raise self.error(path, f"the target '{name}' is not an answer of this file",
                              hint="a target is a quantity (or its rate) of 'quantities'")
@@ -97,11 +97,12 @@ class FindSection:
         return Target(name, number, unit, text, self.doc.line(path))
 
     def number_and_unit(self, value, path):
-        """A target's value: a number or expression, perhaps followed by a unit ('1 Hz')."""
+        """A target's value (or a root's to choose): a number or expression, perhaps
+        followed by a unit ('1 Hz')."""
         if isinstance(value, (int, float)) and not isinstance(value, bool):
             return self.number(value, path), None
         if not isinstance(value, str):
-            raise self.error(path, f"a target is a number, or a number and a unit ('1 Hz'), "
+            raise self.error(path, f"a value is a number, or a number and a unit ('1 Hz'), "
                              f"got {value!r}")
         words = value.split()
         for cut in range(len(words), 0, -1):
@@ -113,11 +114,13 @@ class FindSection:
             except ExpressionError:
                 continue
             return number, (tail or None)
-        raise self.error(path, f"cannot read the target {value!r}",
+        raise self.error(path, f"cannot read the value {value!r}",
                          hint="write a number, or a number and a unit: 1 Hz, 450 mm, 0.5 s")
 
     def choose(self, spec, path, unknowns):
-        """``choose``: smallest, largest or {nearest: V} (one unknown with an interval)."""
+        """``choose``: smallest, largest or {nearest: V} (one unknown with an interval): V
+        in the unit of the interval, or a number and a unit ('900 mm'), converted with the
+        interval by :meth:`find_units`."""
         value = spec["choose"]
         where = path + ("choose",)
         if len(unknowns) != 1 or not unknowns[0].interval:
@@ -127,40 +130,37 @@ class FindSection:
             return (value,)
         if isinstance(value, dict):
             near = self.mapping(value, where, {"nearest"}, ("nearest",))
-            return ("nearest", self.number(near["nearest"], where + ("nearest",)))
+            return ("nearest",) + self.number_and_unit(near["nearest"], where + ("nearest",))
         raise self.error(where, f"choose is smallest, largest or {{nearest: V}}, got {value!r}")
 
     def find_units(self, mech) -> None:
         """Each target's unit is of its answer's dimension; an unknown given in a ``unit`` is
-        converted to the unit the file writes it in, which must be of its dimension."""
+        converted to the unit the file writes it in, which must be of its dimension, and so
+        is the value of ``choose: {nearest: V}`` (in its own unit, else in the interval's)."""
         import dataclasses
         from linkcli.input.derived import words
-        from linkcli.model.dimensions import dimension, param_unit
+        from linkcli.model.dimensions import dimension
         design = mech.design
         if design is None:
             return
         unknowns = []
         for u in design.unknowns:
-            if u.unit is not None:
-                path = ("find", "unknowns", u.name, "unit")
-                kind, dim, factor = param_unit(mech, u.name)
-                if dim is None:
-                    self.error(path, f"the values of '{u.name}' are given in {u.unit}, but the "
-                               f"file never writes '{u.name}' on its own as a value of one "
-                               "kind, so its own unit is unknown",
-                               hint="give them without 'unit', as the file writes it")
-                    continue
-                given, to_si = parse_unit(u.unit, dim)
-                if not given.agrees(dim):
-                    self.error(path, f"'{u.name}' is {words(dim)} and the unit '{u.unit}' is "
-                               f"{words(given, u.unit)}")
-                    continue
-                scale = to_si / factor
-                u = dataclasses.replace(u, unit=None, **{
-                    f: getattr(u, f) * scale for f in ("lo", "hi", "start")
-                    if getattr(u, f) is not None})
-            unknowns.append(u)
-        mech.design = dataclasses.replace(design, unknowns=tuple(unknowns))
+            scale = self.to_file_unit(mech, u.name, u.unit, ("find", "unknowns", u.name, "unit"))
+            if scale is None:
+                continue
+            unknowns.append(dataclasses.replace(u, unit=None, **{
+                f: getattr(u, f) * scale for f in ("lo", "hi", "start")
+                if getattr(u, f) is not None}))
+        choose = design.choose
+        if choose is not None and choose[0] == "nearest":
+            _, value, unit = choose
+            u = design.unknowns[0]
+            scale = (self.to_file_unit(mech, u.name, unit, ("find", "choose", "nearest"))
+                     if unit is not None else
+                     self.to_file_unit(mech, u.name, u.unit, ("find", "unknowns", u.name,
+                                                             "unit"), report=False))
+            choose = ("nearest", value * (scale or 1.0))
+        mech.design = dataclasses.replace(design, unknowns=tuple(unknowns), choose=choose)
         for target in design.targets:
             if target.unit is None:
                 continue
@@ -173,3 +173,27 @@ class FindSection:
                 self.error(("find", "targets", target.name), f"'{target.name}' is {words(dim)} "
                            f"and the target's unit '{target.unit}' is "
                            f"{words(given, target.unit)}")
+
+    def to_file_unit(self, mech, name, unit, path, report=True) -> float | None:
+        """The factor from ``unit`` (None: the file's own) to the unit the file writes the
+        parameter ``name`` in; None where it does not fit (reported, unless ``report`` is
+        False)."""
+        from linkcli.input.derived import words
+        from linkcli.model.dimensions import param_unit
+        if unit is None:
+            return 1.0
+        kind, dim, factor = param_unit(mech, name)
+        if dim is None:
+            if report:
+                self.error(path, f"the values of '{name}' are given in {unit}, but the file "
+                           f"never writes '{name}' on its own as a value of one kind, so its "
+                           "own unit is unknown", hint="give them without a unit, as the file "
+                           "writes it")
+            return None
+        given, to_si = parse_unit(unit, dim)
+        if not given.agrees(dim):
+            if report:
+                self.error(path, f"'{name}' is {words(dim)} and the unit '{unit}' is "
+                           f"{words(given, unit)}")
+            return None
+        return to_si / factor

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 
 from linkcli.model.exact import cis, hypot, phase, plane
+from linkcli.model.dimensions import driver_rate_kind
 from linkcli.model.mechanism import FRAME, Driver, Load
 from linkcli.input.reader import UNKNOWN
 
@@ -25,13 +26,20 @@ class LoadsSection:
         kind, a, b = self.coordinate_kind(spec, path, pool)
         base = "angle" if kind == "angle" else "length"
         value = self.number(spec["value"], path + ("value",), base, units)
-        rate_factor = units.factor("angular_rate") if base == "angle" else units.factor("length")
-        rate = self.number(spec.get("rate", 0), path + ("rate",)) * rate_factor
-        accel_factor = units.display(base, 2)[1]
-        accel = self.number(spec.get("accel", 0), path + ("accel",)) * accel_factor
+        rate, accel = (self.driver_rate(spec, path, key, base, order, units)
+                       for order, key in ((1, "rate"), (2, "accel")))
         if kind == "length" and value <= 0:
             raise self.error(path + ("value",), "a driving length must be positive")
         return Driver(kind, a, b, value, rate, accel)
+
+    def driver_rate(self, spec, path, key, base, order, units) -> float:
+        """The driver's rate of ``order`` (``key``: rate or accel) in SI, from the file's
+        unit of it (units.display); a parameter written as it is a value of that kind."""
+        written = spec.get(key, 0)
+        value = self.number(written, path + (key,)) * units.display(base, order)[1]
+        if isinstance(written, str):
+            self.note_use(written, driver_rate_kind(base, order))
+        return value
 
     def coordinates(self, data, units, pool, fixed, moving) -> tuple:
         """``coordinates``: the independent coordinates of a mechanism with several degrees

@@ -19,7 +19,7 @@
 from __future__ import annotations
 
 from linkcli.model.mechanism import Quantity
-from linkcli.model.units import parse_unit
+from linkcli.model.units import fitting, parse_unit
 
 #: the new quantities' kinds, each the YAML key that asks for it
 OSCILLATION = ("natural_period", "damped_period", "frequency_ratio", "eigenvalue",
@@ -114,11 +114,13 @@ class OscillationSection:
         return dataclasses.replace(quantity, form=self.part(value, path))
 
     def answer_units(self, mech) -> None:
-        """The ``unit`` of each quantity of :data:`OSCILLATION` has its dimension."""
+        """The ``unit`` of each quantity of a vibration problem has its dimension (angles
+        aside: model.units.show); else a located error naming the units that have it."""
         from linkcli.input.derived import words
         from linkcli.model.dimensions import dimension
+        from linkcli.model.mechanism import VIBRATION
         for name, q in mech.quantities.items():
-            if q.kind in OSCILLATION and q.unit is not None:
+            if q.kind in VIBRATION and q.unit is not None:
                 try:
                     dim = dimension(mech, name)
                 except (KeyError, AttributeError, StopIteration):
@@ -126,7 +128,8 @@ class OscillationSection:
                 given = parse_unit(q.unit, dim)[0]
                 if not given.agrees(dim):
                     self.error(("quantities", name, "unit"), f"{name} is {words(dim)} and "
-                               f"the unit '{q.unit}' is {words(given, q.unit)}")
+                               f"the unit '{q.unit}' is {words(given, q.unit)}",
+                               hint="give one of " + ", ".join(fitting(mech.units, dim)))
 
     def part(self, value, path):
         """``part``: real or imaginary (None: the magnitude)."""

@@ -9,7 +9,7 @@ import re
 
 from linkcli.input import expressions
 from linkcli.model.exact import plane
-from linkcli.errors import ExpressionError, InputError
+from linkcli.errors import ExpressionError, InputError, ScaleError
 from linkcli.model.mechanism import FRAME
 from linkcli.model.units import Units
 from linkcli.input.source import Document, path_text
@@ -18,6 +18,17 @@ UNKNOWN = "unknown"
 NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*\Z")   # \Z: no trailing newline
 WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 BODIES = ("link", "slider", "actuator", "disc")   # named bodies: never the fixed one's name
+#: The range of lengths (SI, m) the solvers carry in double precision.  They square lengths
+#: (distances, discriminants, Newton's |g|^2), multiply a square by a length or by the
+#: rounding 2.3e-13 (the bounds of "zero up to rounding"), and multiply a speed by an
+#: acceleration (the tests of a rate's zero) or two energies (the vibrations' determinants):
+#: products of four lengths, which must stay normal doubles.  Every length is at most
+#: LARGEST_LENGTH (its fourth power 1e300, below the overflow at 1.8e308) and the file's
+#: largest at least SMALLEST_SIZE (1e-300, above the subnormals that start at 2.2e-308, where
+#: a product loses its digits and a regular position reads as a toggle).  A tiny length in
+#: a mechanism of ordinary size is only a small number, and is kept.
+LARGEST_LENGTH = 1e75
+SMALLEST_SIZE = 1e-75
 
 
 def reserved_parameter(name: str) -> str | None:
@@ -72,8 +83,10 @@ class Reader:
         #: parameters given other values than the file's (input.document.build)
         self.overrides: dict = {}
         #: path -> (text, unit kind) of every value written as an expression: what depends
-        #: on the parameters (answers.coefficients evaluates them over arrays)
+        #: on the parameters (runs.coefficients evaluates them over arrays)
         self.written: dict = {}
+        #: (|value| in m, path) of the largest length read so far
+        self.largest: tuple = (0.0, ())
 
     def error(self, path, detail: str, hint: str | None = None):
         self.errors.append(InputError(detail, file=self.doc.name, key=path_text(path) or None,
@@ -115,7 +128,43 @@ class Reader:
             return units.angle_to_si(number)
         if kind is not None:
             number *= units.factor(kind)
+        if kind == "length" and isinstance(number, (int, float)):
+            self.in_range(number, path, units)
         return number
+
+    def in_range(self, length: float, path, units: Units):
+        """Refuse a length beyond LARGEST_LENGTH (recorded: the reading goes on, so that what
+        names the value is not reported undefined); keep the largest one read, which
+        :meth:`large_enough` compares with SMALLEST_SIZE."""
+        size = abs(length)
+        if size > LARGEST_LENGTH:
+            self.scale_error(path, size, LARGEST_LENGTH, "large", units)
+        elif size > self.largest[0]:
+            self.largest = (size, tuple(path))
+
+    def large_enough(self, units: Units):
+        """Refuse a file whose largest length is below SMALLEST_SIZE (none read: no scale)."""
+        size, path = self.largest
+        if 0 < size < SMALLEST_SIZE:
+            self.scale_error(path, size, SMALLEST_SIZE, "small", units)
+
+    def scale_error(self, path, size, bound, side, units: Units):
+        """Record the :class:`ScaleError` of a length ``size`` (m) beyond ``bound``."""
+        unit, f = units.display("length", 0)
+        if side == "large":
+            detail = (f"the length {size / f:.4g} {unit} is beyond the largest the solvers "
+                      f"carry ({bound / f:.4g} {unit}): its square and the products of the "
+                      "closed forms and Newton's method overflow a double")
+        else:
+            detail = (f"the mechanism's largest length is {size / f:.4g} {unit}, below the "
+                      f"smallest size the solvers carry ({bound / f:.4g} {unit}): its square "
+                      "and the products of the closed forms underflow a double, and regular "
+                      "positions would read as toggles")
+        self.errors.append(ScaleError(detail, file=self.doc.name, key=path_text(path) or None,
+                                      line=self.doc.line(path), value=size, bound=bound,
+                                      side=side, hint="write the mechanism in lengths between "
+                                      f"{SMALLEST_SIZE:g} m and {LARGEST_LENGTH:g} m: a "
+                                      "scale factor changes no angle or ratio"))
 
     def note_use(self, text: str, kind: str):
         """Record that ``text``, a multiple of one name (``ks``, ``2*L``), is a value of unit

@@ -8,7 +8,7 @@ import re
 from linkcli.model.mechanism import (FRAME, LIMITS, VIBRATION, AnswerKey, KeyEntry, Quantity,
                                       limit_refusal, split_rate)
 from linkcli.model.mechanism import Tolerance
-from linkcli.model.units import ANGLE, FORCE, FREQUENCY, LENGTH, TORQUE
+from linkcli.model.units import ANGLE, FORCE, LENGTH, TORQUE
 from linkcli.input.derived import EXPR
 from linkcli.input.oscillation import OSCILLATION
 
@@ -148,7 +148,7 @@ class AnswersSection:
         return quantities
 
     def limit_quantity(self, name, value, path) -> Quantity:
-        """A limit of the motion of a quantity over a range of the driver (answers.limits):
+        """A limit of the motion of a quantity over a range of the driver (runs.limits):
         {maximum: NAME}, minimum, at_maximum, at_minimum, stroke, time_ratio, or
         {stroke_time: NAME, component: working | return}; from: and to: give the range."""
         value = self.mapping(value, path, set(LIMITS) | {"component", "from", "to"})
@@ -184,7 +184,7 @@ class AnswersSection:
         """Whether the quantity a limit is of is defined and has a rate (its definition's
         own error is reported already when it failed)."""
         path = ("quantities", q.name, q.kind)
-        base, order = split_rate(q.a)
+        base, order = split_rate(q.a, quantities)
         if base in self.failed:
             return False
         if base not in quantities:
@@ -505,27 +505,24 @@ class AnswersSection:
         value = self.mapping(value, path, set(VIBRATION) - set(OSCILLATION) | {"unit", "time"})
         kind, where, arg = self.one_kind(value, path, VIBRATION)
         coords = self.vibration.get("coordinates", [])
-        unit = value.get("unit")
-        if unit is not None and not isinstance(unit, str):
-            raise self.error(path + ("unit",), f"unit is a unit name, got {unit!r}")
-        if unit is not None:
-            if kind not in ("natural_frequency", "damped_frequency", "forcing_frequency"):
-                raise self.error(path + ("unit",), f"{kind} is given in fixed units",
-                                 hint="'unit' is for frequencies: rad/s, Hz or rpm")
-            if unit not in FREQUENCY:
-                raise self.error(path + ("unit",), f"unknown frequency unit {unit!r}",
-                                 hint="use one of " + ", ".join(FREQUENCY))
+        unit = self.answer_unit(value, path)        # its dimension: answer_units
         if "time" in value and kind != "free_response":
             raise self.error(path + ("time",), "'time' is for free_response")
         if not coords:
             raise self.error(path, f"{kind} needs a vibration problem: declare its "
                              "coordinates under 'coordinates:'")
+        quantity = self.vibration_kind(name, kind, value, path, where, arg, pool)
+        return dataclasses.replace(quantity, unit=unit, line=self.doc.line(path))
+
+    def vibration_kind(self, name, kind, value, path, where, arg, pool) -> Quantity:
+        """The quantity of ``kind`` (a key of :data:`VIBRATION`) with its argument ``arg``."""
+        coords = self.vibration["coordinates"]
         if kind in ("natural_frequency", "damped_frequency", "damping_ratio"):
-            return Quantity(name, kind, str(self.mode(arg, where, len(coords))), unit=unit)
+            return Quantity(name, kind, str(self.mode(arg, where, len(coords))))
         if kind == "forcing_frequency":
             if arg is not True:
                 raise self.error(where, "write 'forcing_frequency: true'")
-            return Quantity(name, kind, unit=unit)
+            return Quantity(name, kind)
         if kind == "mode_shape":
             if not isinstance(arg, list) or len(arg) != 2:
                 raise self.error(where, "a mode shape component is [mode, coordinate]")
@@ -600,7 +597,7 @@ class AnswersSection:
             return False            # its definition's error is reported already
         order = {"position": 0, "velocity": 1, "acceleration": 2, "statics": 0,
                  "vibration": 0}[section]
-        base = split_rate(name)
+        base = split_rate(name, quantities)
         if base[0] in quantities and quantities[base[0]].kind == "design":
             raise self.error(path, f"'{name}' is an unknown of 'find': it is listed in the "
                              "report's Design section by itself", hint="remove it from here")
@@ -616,6 +613,7 @@ class AnswersSection:
             return True
         if section == "statics":
             if name in quantities and quantities[name].kind in FORCES:
+                self.balanced(name, quantities[name], path)
                 return True
             if name not in quantities or quantities[name].kind != "load":
                 raise self.error(path, f"'{name}' is not a load", hint="statics lists loads")
@@ -643,6 +641,22 @@ class AnswersSection:
                              f"{' rate' if base[1] else ''} is listed under " +
                              " or ".join(f"'{kinematic[o]}'" for o in sorted(allowed)))
         return True
+
+    def balanced(self, name, quantity, path) -> None:
+        """Refuse a joint force in a vibration problem (a file that declares coordinates):
+        statics finds it with the unknown load that balances the others, and such a file
+        has none; the advice names what it has (its springs' forces at the equilibrium)."""
+        if "coordinates" not in self.doc.data or quantity.kind == "load":
+            return
+        springs = sorted(self.vibration["springs"])
+        hint = "remove it from 'statics'"
+        if springs:
+            hint += f"; the forces at the equilibrium it solves are its springs' " \
+                f"(spring_force: {springs[0]}, under 'vibration')"
+        raise self.error(path, f"'{name}' is {_kind_text(quantity.kind)}, which statics "
+                         "finds with the unknown load that balances the others, and a "
+                         "vibration problem (coordinates, no driver) has no unknown load, so "
+                         "its joint forces are not solved", hint=hint)
 
     def rate_of(self, name, quantity, order, path):
         """Refuse a rate the quantity has not (a speed has one, an acceleration none)."""
@@ -729,7 +743,7 @@ class AnswersSection:
         line = self.doc.line(path)
         is_point = name in pool and (isinstance(printed, list) or name not in quantities)
         if not is_point:
-            base = split_rate(name)
+            base = split_rate(name, quantities)
             if base is None or base[0] not in quantities:
                 raise self.error(path, f"the key names '{name}', which the file does not define",
                                  hint="define it under 'quantities' or fix the name")

@@ -67,6 +67,17 @@ def _fails(short) -> bool:
     return short is not None and bool(np.any(np.asarray(short) > 0))
 
 
+def _paired(rank, judge) -> tuple:
+    """Every coordinate as the pair [ranked, judged]: a dyad's branches are ranked by their
+    distance to the figure at the first, their closure judged at the second."""
+    return tuple(np.array([float(a), float(b)]) for a, b in zip(rank, judge))
+
+
+def _judged(short):
+    """The shortfall at the judged value of a pair (the last), None or a number as is."""
+    return np.ravel(short)[-1] if np.ndim(short) else short
+
+
 def own_coordinates(mech):
     """The file's own coordinate values (the driver's ``value``)."""
     values = [c.value for c in mech.coordinates]
@@ -132,20 +143,25 @@ class Solver:
     def _choose_branches(self):
         """Each dyad's assembly branch as in the figure, chosen once.
 
-        The branches are chosen where the figure is drawn: at the coordinates measured on
+        The branches are ranked where the figure is drawn: at the coordinates measured on
         the figure's points (so that another driver value, another digit k, keeps the
-        figure's assembly).  Going down the groups, each dyad takes the branch nearest its
-        figure point; when a later dyad cannot close, the earlier choices are searched
-        for the assembling combination nearest the figure, and the forced choice is
-        reported.  ``cautions`` lists what the reader should check.
+        figure's assembly), each dyad's nearer branch first.  Whether a combination closes
+        is judged at the file's own coordinates (the driver's value), where it is solved:
+        the figure's value may lie where the nearer branch cannot close while the file's
+        does, or the other way round.  Going down the groups, each dyad takes the branch
+        nearest its figure point; when a later dyad cannot close, the earlier choices are
+        searched for the assembling combination nearest the figure, and the forced choice
+        is reported.  Only when no combination closes at the file's value is the closure
+        judged at the figure's.  ``cautions`` lists what the reader should check.
         """
         self.cautions = []
         self.undetermined = None
         dyads = [g for g in self.groups if g.kind in BRANCHED]
         figure = self._coords(figure_coordinates(self.mech), "q")
-        found = self._search(figure)
+        own = self._coords(own_coordinates(self.mech), "q")
+        found = self._search(_paired(figure, own))
         if found is None:
-            found = self._search(self._coords(own_coordinates(self.mech), "q"))
+            found = self._search(_paired(figure, figure))
         if found is None:
             for g in dyads:
                 g.branch = 1
@@ -169,15 +185,17 @@ class Solver:
         return pos
 
     def _candidates(self, group, pos, q):
-        """[(distance to the figure point, branch, position, assembles)] of a dyad."""
+        """[(distance to the figure point, branch, position, assembles)] of a dyad; with
+        ``q`` a pair (:func:`_paired`) the distance is the first value's, whether it
+        assembles the second's, and the position holds both."""
         target = self._target(group)
         out = []
         for branch in (1, -1):
             group.branch = branch
             p, short, *_ = self._position(group, pos, q)
-            p = complex(np.ravel(p)[0])
-            ok = not _fails(short)
-            out.append((abs(p - target), branch, p, ok))
+            near = complex(np.ravel(p)[0])
+            ok = not _fails(_judged(short))
+            out.append((abs(near - target), branch, p, ok))
         return sorted(out, key=lambda c: c[0])
 
     def _target(self, group) -> complex:
@@ -234,7 +252,7 @@ class Solver:
                 return i
             if group.point is not None:
                 p, short, *_ = self._position(group, pos, q)
-                if _fails(short):
+                if _fails(_judged(short)):
                     return -1
                 pos[group.point] = p
                 placed.append(group.point)
@@ -316,20 +334,7 @@ class Solver:
                 return [Caution("unassembled", f"the file's own position cannot be assembled: "
                                 f"{group.describe()} {where_text(mech, kin.q, True)} {reason} "
                                 "(the branch is the figure's)", mech.file)]
-        points = [complex(np.ravel(z)[0]) for z in pos.values()]
-        size = max(abs(z - sum(points) / len(points)) for z in points) or 1.0
-        unit, f = mech.units.display("length", 0)
-        far = {p: abs(complex(np.ravel(pos[p])[0]) - mech.moving[p]) for p in mech.moving
-               if p in pos}
-        far = {p: d for p, d in far.items() if d > FAR * size}
-        if not far:
-            return []
-        listed = ", ".join(f"{p} by {d / f:.4g} {unit}" for p, d in
-                           sorted(far.items(), key=lambda item: -item[1]))
-        return [Caution("figure", f"the solved position is far from the figure ({FAR:.0%} of "
-                        f"the mechanism's size is {FAR * size / f:.4g} {unit}): {listed}; "
-                        "check the lengths, the shapes and the driver's points",
-                        mech.file, {p: d / f for p, d in far.items()})]
+        return far_from_figure(mech, pos)
 
     # positions -------------------------------------------------------------------
     def _position(self, group, pos, q, turns=None):
@@ -676,6 +681,25 @@ def _dist_rhs(c, fixed):
                 r = r + 2.0 * kin.rates[j] * kin.rates[j]
         return r
     return rhs
+
+
+def far_from_figure(mech, pos) -> list:
+    """The caution listing the points solved (``pos``: every point at the file's own
+    coordinates) farther than FAR of the mechanism's size from the figure's, if any."""
+    points = [complex(np.ravel(pos[p])[0]) for p in mech.points if p in pos]
+    size = max(abs(z - sum(points) / len(points)) for z in points) or 1.0
+    unit, f = mech.units.display("length", 0)
+    far = {p: abs(complex(np.ravel(pos[p])[0]) - mech.moving[p]) for p in mech.moving
+           if p in pos}
+    far = {p: d for p, d in far.items() if d > FAR * size}
+    if not far:
+        return []
+    listed = ", ".join(f"{p} by {d / f:.4g} {unit}" for p, d in
+                       sorted(far.items(), key=lambda item: -item[1]))
+    return [Caution("figure", f"the solved position is far from the figure ({FAR:.0%} of "
+                    f"the mechanism's size is {FAR * size / f:.4g} {unit}): {listed}; "
+                    "check the lengths, the shapes and the driver's points",
+                    mech.file, {p: d / f for p, d in far.items()})]
 
 
 def assembly_error(mech, group, q, bad, worst, reason) -> AssemblyError:

@@ -3,11 +3,14 @@
 ``closed``: the closed form along the Assur decomposition; ``newton``:
 Newton-Raphson on every constraint equation, with a tolerance relative to the
 mechanism's size.  Solvers are built once per mechanism (and tolerance) and
-kept in a cache keyed by the mechanism object, which stays plain data.
+kept in a cache keyed by the mechanism object, which stays plain data: the
+solvers of the KEPT mechanisms solved last.  (A solver refers to its
+mechanism, so a cache keyed weakly would keep every mechanism alive: a sweep
+over a parameter builds one per value, and its memory grew with the values.)
 """
 from __future__ import annotations
 
-import weakref
+from collections import OrderedDict
 
 import numpy as np
 
@@ -15,14 +18,15 @@ from linkcli.errors import InputError, StructureError
 from linkcli.kinematics.closed_form import Solver
 
 METHODS = ("closed", "newton")
-_CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+KEPT = 64
+_CACHE: OrderedDict = OrderedDict()     # mechanism -> {key: solver}, the last used at the end
 
 
 def solver_for(mech, method="closed", tol=None):
     """The solver of ``mech`` for ``method`` ('closed' or 'newton', relative tolerance ``tol``)."""
     if method not in METHODS:
         raise InputError(f"unknown method {method!r}", key="method", hint="closed or newton")
-    cache = _CACHE.setdefault(mech, {})
+    cache = _solvers(mech)
     if method == "closed":
         key = ("closed",)
         if key not in cache:
@@ -33,6 +37,19 @@ def solver_for(mech, method="closed", tol=None):
     if key not in cache:
         cache[key] = NewtonSolver(mech, key[1])
     return cache[key]
+
+
+def _solvers(mech) -> dict:
+    """The solvers kept for ``mech`` (made the last used); the least recently used
+    mechanism's are dropped beyond KEPT."""
+    cache = _CACHE.get(mech)
+    if cache is not None:
+        _CACHE.move_to_end(mech)
+        return cache
+    cache = _CACHE[mech] = {}
+    while len(_CACHE) > KEPT:
+        _CACHE.popitem(last=False)
+    return cache
 
 
 def _closed(mech):
@@ -64,3 +81,15 @@ def state(mech, q=None, method="closed", tol=None):
     solver.accelerations(kin, d.accel)
     unit = solver.velocities(kin.at_rest(), np.ones_like(kin.q))
     return kin, unit
+
+
+def figure_cautions(mech, method="closed", tol=None) -> list:
+    """What the figure check found: the figure far from the solved position, an ambiguous or
+    forced branch, a figure that cannot be assembled (the branch is then undetermined);
+    with ``method`` newton, the points Newton solves far from the figure."""
+    from linkcli.errors import Caution
+    solver = solver_for(mech, method, tol)
+    out = list(solver.cautions)
+    if solver.undetermined:
+        out.insert(0, Caution("unassembled", solver.undetermined, mech.file))
+    return out

@@ -127,7 +127,7 @@ class Chart:
         self.inner = inner
         self.n = inner.n
         self.replaced = replaced
-        points = np.array(list(mech.fixed.values()) + list(mech.moving.values()))
+        points = np.array(mech.figure_points)
         self.size = float(np.max(np.abs(points - points.mean()))) or 1.0
         self.q_scale = np.array([1.0 if c.kind == "angle" else self.size
                                  for c in mech.coordinates])

@@ -18,7 +18,7 @@ two linear equations), and a point at a length along a guide through the length'
 (P = A + L (C - B) / |C - B|).  A dyad (RRR, RRP, PRR, PRP, RPR, RPP) closes a loop:
 its point is a root of closure equations whose solution in the parameters is no
 formula worth printing, so it is refused by name (:class:`NoClosedForm`); its
-closure equations in complex form are ``answers.symbolic``'s.
+closure equations in complex form are ``texts.symbolic``'s.
 
 Points are pairs (x, y) of sympy expressions; angles of vectors are found as
 rho (cos phi, sin phi) with rho free of the coordinates when the vector is one

@@ -7,6 +7,7 @@ they must give.
         m: {start: 2}                    # or a start value
       targets: {f1: 1 Hz, T: 0.5 s}      # as many as unknowns: an answer and its value
       choose: smallest                   # largest, or {nearest: V}: one of several roots
+                                         # (V in the interval's unit, or '900 mm')
 
 Values of unknowns are in the unit the file writes the parameter in (``unit:`` gives the
 interval in another of its dimension, converted); a target's value is in its ``unit``, or
@@ -48,7 +49,8 @@ class Target:
 @dataclass(frozen=True)
 class Design:
     """The unknowns, the targets, the rule that picks one of several roots (('smallest',),
-    ('largest',) or ('nearest', value); None: several roots are refused), and whether the
+    ('largest',) or ('nearest', value), the value as the file writes the unknown once
+    input.find has converted it; None: several roots are refused), and whether the
     unknowns were given values (``fixed``: the mechanism is a trial of the search, or the
     solution)."""
 

@@ -37,7 +37,7 @@ def base_dimension(base: str) -> Dimension:
 def dimension(mech, name: str) -> Dimension:
     """The dimension of the answer ``name`` (a quantity, its rate, a point's coordinate, a
     load, a solved design parameter) of ``mech``; KeyError for a name it does not define."""
-    base, order = split_rate(name)
+    base, order = split_rate(name, mech.quantities)
     quantity = mech.quantities[base]
     return of_quantity(mech, quantity) / TIME_DIM ** order
 
@@ -182,13 +182,31 @@ def _vibration(mech, quantity) -> Dimension:
     raise KeyError(kind)
 
 
+#: the kinds of value a parameter may be written as that no unit kind of the tables is: a
+#: length driver's rate (the file's length per second) and a driver's second rate, each
+#: (the driver's base, the order of the rate): model.units.Units.display names its unit
+DRIVER_RATES = {"length_rate": ("length", 1), "length_accel": ("length", 2),
+                "angular_accel": ("angle", 2)}
+
+
+def driver_rate_kind(base: str, order: int) -> str:
+    """The kind of value of the driver's rate of ``order`` (1 or 2), its base 'angle' or
+    'length': 'angular_rate' (a unit kind of the tables) or one of :data:`DRIVER_RATES`."""
+    if (base, order) == ("angle", 1):
+        return "angular_rate"
+    return next(kind for kind, rate in DRIVER_RATES.items() if rate == (base, order))
+
+
 def param_unit(mech, name: str) -> tuple:
     """(kind, Dimension, SI factor) of the parameter ``name``: the unit kind it is written in
-    where the file uses it on its own as a value of one kind (``k: ks``, ``[L, -2*L]``),
-    else (None, None, None)."""
+    where the file uses it on its own as a value of one kind (``k: ks``, ``[L, -2*L]``,
+    ``driver: accel: a``), else (None, None, None)."""
     kind = mech.param_kinds.get(name)
     if kind is None:
         return None, None, None
+    if kind in DRIVER_RATES:
+        base, order = DRIVER_RATES[kind]
+        return kind, base_dimension(base) / TIME_DIM ** order, mech.units.display(base, order)[1]
     return kind, DIMENSIONS[kind], mech.units.factor(kind)
 
 
@@ -196,4 +214,6 @@ def param_unit_name(mech, name: str) -> str:
     """The name of the unit the file writes parameter ``name`` in ('' where it does not
     tell)."""
     kind = mech.param_kinds.get(name)
+    if kind in DRIVER_RATES:
+        return mech.units.display(*DRIVER_RATES[kind])[0]
     return mech.units.names[kind] if kind else ""

@@ -238,7 +238,7 @@ class Quantity:
         return self.kind in ("angle", "rotation", "between")
 
 
-#: quantity kinds of the limits of the motion (answers.limits): one value for a range of the
+#: quantity kinds of the limits of the motion (runs.limits): one value for a range of the
 #: driver, of the quantity named ``a`` (a name or a rate's name, e.g. xB or xBdot); ``component``
 #: is 'working' or 'return' for a stroke time, ``span`` the range (None: the default one)
 LIMITS = ("maximum", "minimum", "at_maximum", "at_minimum", "stroke", "time_ratio",
@@ -342,6 +342,14 @@ class Mechanism:
     def points(self) -> list:
         return [p for p in self.fixed if not p.startswith("~")] + list(self.moving)
 
+    @property
+    def figure_points(self) -> list:
+        """The figure's positions of the named points (m): not the virtual ones (a fixed
+        guide's second point, drawn at least 1 m away to give its direction, is no part of
+        the mechanism's size)."""
+        figure = {**self.fixed, **self.moving}
+        return [figure[p] for p in self.points]
+
     def unknown_load(self) -> Load:
         load = next((load for load in self.loads.values() if load.value is None), None)
         if load is None:
@@ -357,13 +365,17 @@ class Mechanism:
         return "force"
 
 
-def split_rate(name: str):
-    """'phi1ddot' -> ('phi1', 2); 'phi1dot' -> ('phi1', 1); 'phi1' -> ('phi1', 0)."""
-    if name.endswith("ddot") and len(name) > 4:
-        return name[:-4], 2
-    if name.endswith("dot") and len(name) > 3:
-        return name[:-3], 1
-    return name, 0
+def split_rate(name: str, names=()):
+    """'phi1ddot' -> ('phi1', 2); 'phi1dot' -> ('phi1', 1); 'phi1' -> ('phi1', 0).
+
+    A name ending in 'ddot' reads two ways ('wddot': the second rate of 'w' or the first of
+    'wd'); the reading whose base is one of ``names`` (the file's quantities) is taken, and
+    the second rate where none or both are (both defined is refused when the file is read:
+    input.report)."""
+    readings = [(name[:-len(suffix)], order) for suffix, order in (("ddot", 2), ("dot", 1))
+                if name.endswith(suffix) and len(name) > len(suffix)]
+    known = [r for r in readings if r[0] in names]
+    return (known or readings or [(name, 0)])[0]
 
 
 def limit_refusal(name: str, quantity: Quantity, order: int) -> str | None:

@@ -157,7 +157,11 @@ class Units:
                 return self.names["angle"], self.factor("angle")
             if order == 1:
                 return self.names["angular_rate"], self.factor("angular_rate")
-            name = self.names["angle"] if self.names["angular_rate"] == "rpm" else self.names["angular_rate"][:-2]
+            # an angular acceleration in the angle unit of the rate (deg/s: deg/s^2), or of
+            # the file where the rate counts turns (rpm, rev/s: the file's deg/s^2)
+            name = self.names["angular_rate"][:-2]
+            if name not in ANGLE:
+                name = self.names["angle"]
             return f"{name}/s^2", ANGLE[name]
         unit = self.names["length"]
         factor = self.factor("length")
@@ -275,18 +279,19 @@ def unit_dimension(name: str):
 
 def show(units, dim, kind=None, unit=None) -> tuple[str, float]:
     """(unit name, SI factor) of a value of dimension ``dim`` in the file's units: the
-    quantity's own ``unit`` when it names one; else the file's unit of ``kind`` (or of the
-    kind the dimension is shown as); else a product of the file's named units (a force, a
-    length, a mass, a time, an angle) with the fewest factors, written as ``N/rad``,
-    ``kg mm``, ``mm/deg``; a pure number has no unit."""
+    quantity's own ``unit`` when it names one (any unit :func:`parse_unit` reads whose
+    dimension agrees with ``dim``, angles aside: N kg/m for M^2 T^-2, 1/s for rad/s); else
+    the file's unit of ``kind`` (or of the kind the dimension is shown as); else a product
+    of the file's named units (a force, a length, a mass, a time, an angle) with the fewest
+    factors, written as ``N/rad``, ``kg mm``, ``mm/deg``; a pure number has no unit."""
     if unit is not None:
-        named = unit_dimension(unit)
+        named = parse_unit(unit, dim)
         if kind is not None and unit in KINDS[kind]:
-            named = (kind, DIMENSIONS[kind], KINDS[kind][unit])
-        if named is None or named[1] != dim:
+            named = (DIMENSIONS[kind], KINDS[kind][unit])
+        if named is None or not named[0].agrees(dim):
             raise InputError(f"unit '{unit}' is not a unit of {dim.text()}",
-                             hint="give a unit of the quantity's own kind")
-        return unit, named[2]
+                             hint="give one of " + ", ".join(fitting(units, dim)))
+        return unit, named[1]
     if kind is not None and DIMENSIONS[kind] == dim:
         return units.names[kind], units.factor(kind)
     named = SHOWN_AS.get(dim)
@@ -328,6 +333,23 @@ def _composed(units, dim) -> tuple[str, float]:
     return text, factor
 
 
+def fitting(units, dim) -> list:
+    """The names of the units of dimension ``dim``: those of the tables and of energy and
+    power that have it; else the file's product of units for it, the same product in SI
+    ('N kg/mm', 'N kg/m') and the units that have it angles aside ('mm/deg', 'mm/rad',
+    'mm' ...); '1' and '%' for a pure number."""
+    if dim.none and not dim.angle:
+        return list(RATIOS)[1:]
+    named = [(name, DIMENSIONS[kind]) for kind, table in KINDS.items() for name in table]
+    named += [(name, d) for name, (d, _) in _GLUED.items()]
+    exact = list(dict.fromkeys(name for name, d in named if d == dim))
+    if exact:
+        return exact
+    si = Units({"length": "m", "force": "N", "mass": "kg", "time": "s", "angle": "rad"})
+    names = [_composed(units, dim)[0], _composed(si, dim)[0]]
+    return list(dict.fromkeys(names + [name for name, d in named if d.agrees(dim)]))
+
+
 #: units written glued (N s, N m s) and the units of energy and power
 _GLUED = {"Ns": (FORCE_DIM * TIME_DIM, 1.0), "Nms": (FORCE_DIM * LENGTH_DIM * TIME_DIM, 1.0),
           "Nmm": (FORCE_DIM * LENGTH_DIM, 1e-3), "Nmms": (FORCE_DIM * LENGTH_DIM * TIME_DIM, 1e-3),
@@ -359,26 +381,6 @@ def _token_candidates(token: str) -> list:
         return [(dim ** p, factor ** p) for dim, factor in _unit_candidates(base)]
     except InputError:          # a power that is not a whole number of halves
         return []
-
-
-#: units that count cycles (turns) where the tables count radians: in an expression a value
-#: in them is in cycles per second, as SI writes frequencies (1 Hz = 1/s, 1 rpm = 1/60 1/s)
-CYCLES = ("Hz", "rpm", "rev/s")
-
-
-def cycles(name: str) -> int:
-    """The power of cycles in the unit ``name`` (1 for Hz or rpm, -1 for 1/Hz, 0 for rad/s)."""
-    text = str(name).strip()
-    if text in CYCLES:
-        return 1
-    up, _, down = text.partition("/")
-    count = 0
-    for sign, part in ((1, up), (-1, down.strip("()"))):
-        for token in part.split():
-            base, _, power = token.partition("^")
-            if base in CYCLES:
-                count += sign * (int(power) if power.isdigit() else 1)
-    return count
 
 
 def parse_unit(name, expected=None):

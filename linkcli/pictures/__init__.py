@@ -1,5 +1,8 @@
 """Pictures: ``scene`` (what to draw, as geometry), ``drawing`` (matplotlib
-artists) and ``plotting`` (draw, plot, animate).  matplotlib is imported inside
-the functions.  May import every layer below: ``errors``, ``model``,
-``input``, ``kinematics``, ``forces``, ``answers``.
+artists), ``plotting`` (draw, plot, animate), ``exam`` (the exam's figure with its
+data) and ``vibration`` (frequency responses, mode shapes, time responses).
+matplotlib is imported inside the functions.
+May import: ``linkcli.errors``, ``linkcli.model``, ``linkcli.input``,
+``linkcli.kinematics``, ``linkcli.forces``, ``linkcli.answers``, ``linkcli.runs``,
+``linkcli.texts``.
 """

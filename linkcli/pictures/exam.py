@@ -8,7 +8,7 @@ their values and directions, the unknown load in its positive sense marked '?', 
 the driver with its value and the sense of its rate (for a vibration problem, each
 coordinate with its positive sense).  The vector polygon, the solved angles and every
 other answer of ``draw`` are left out, and so are the axes' ticks: a number drawn is a
-number of the statement (:mod:`linkcli.answers.statement` words the same data).
+number of the statement (:mod:`linkcli.texts.data` words the same data).
 
 :func:`exam_figure` builds the matplotlib figure (tests read its texts); :func:`draw_exam`
 writes it like ``draw``.
@@ -19,7 +19,10 @@ import cmath
 import math
 
 from linkcli.model.mechanism import FRAME
-from linkcli.answers.statement import CLOSE, Writer, fixed_line, force_by_components
+from linkcli.texts.amounts import CLOSE, Writer
+from linkcli.texts.bodies import fixed_line
+from linkcli.texts.loads import force_by_components
+from linkcli.texts.unknowns import unknown_datum
 from linkcli.pictures.drawing import (KNOWN, UNKNOWN, _arc, _arrow, _axial, _force, _line, _text,
                                       _torque, draw_elements, draw_masses, draw_mechanism, figure,
                                       set_limits)
@@ -78,15 +81,21 @@ def _side(scene, a, b, distance):
 
 # --- dimensions -------------------------------------------------------------------------------
 def _lengths(ax, scene, w):
-    """Each binary link's length beside its middle."""
-    for body in scene.mech.bodies.values():
+    """Each binary link's length beside its middle (a design question's unknown by its
+    name)."""
+    mech = scene.mech
+    for body in mech.bodies.values():
         if body.kind != "link" or len(body.points) != 2:
             continue
         a, b = (scene.p[n] for n in body.points)
         if abs(b - a) == 0:
             continue
-        length = abs(body.local[body.points[1]] - body.local[body.points[0]])
-        _text(ax, _side(scene, a, b, 0.045), w.length(length),
+        p, q = body.points
+
+        def length(m):
+            return abs(m.bodies[body.name].local[q] - m.bodies[body.name].local[p])
+        unknown = unknown_datum(mech, length, mech.units.factor("length"))
+        _text(ax, _side(scene, a, b, 0.045), unknown or w.length(length(mech)),
               color=DIMENSION, fontsize=8, ha="center", va="center", zorder=9)
 
 

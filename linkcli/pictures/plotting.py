@@ -17,8 +17,8 @@ import tempfile
 import numpy as np
 
 from linkcli.answers.quantities import angle_period, report_names, require_driver
-from linkcli.answers.sweep import listing
-from linkcli.answers.sheet import evaluate
+from linkcli.runs.sweep import listing
+from linkcli.runs.sheet import evaluate, refuse_driving
 from linkcli.pictures.drawing import (COLORS, draw_elements, draw_loads, draw_masses,
                                       draw_mechanism, draw_polygon, figure)
 from linkcli.pictures.drawing import place_labels, set_limits
@@ -76,7 +76,7 @@ def check_names(mech, names):
         raise InputError("give at least one quantity to plot", key="--y",
                          hint="e.g. --y " + (report_names(mech) or ["q"])[0])
     for name in names:
-        base, order = split_rate(name)
+        base, order = split_rate(name, mech.quantities)
         quantity = mech.quantities.get(base)
         ok = quantity is not None and (order == 0 if quantity.kind == "load" else True)
         if not ok:
@@ -183,7 +183,7 @@ def plot(mech, sweep: str, names, output: str, dpi: int = 100, notify=None) -> l
     Driver values that cannot be solved are left blank, and what the sweep reports (ranges
     that cannot be assembled, rows left out at a toggle, branch points) goes to ``notify``
     (default: standard error, after 'linkcli: '); returns those reports."""
-    from linkcli.answers.sweep import sweep as solve_sweep
+    from linkcli.runs.sweep import sweep as solve_sweep
     check_output(output, IMAGE_FORMATS)
     require_driver(mech, "a plot against the driver")
     check_names(mech, names)
@@ -206,7 +206,7 @@ def plot_vary(mech, vary: str, names, output: str, dpi: int = 100, notify=None) 
     """Answers ``names`` against one of the file's parameters over ``vary``
     ('NAME=FROM:TO:STEPS'), one panel each; values without answers are left blank and
     reported to ``notify``."""
-    from linkcli.answers.vary import parse_vary, vary as solve_vary
+    from linkcli.runs.vary import parse_vary, vary as solve_vary
     check_output(output, IMAGE_FORMATS)
     check_names(mech, names)
     name, values = parse_vary(vary)
@@ -270,7 +270,8 @@ def _wrap(text, width=80):
 # --- draw and animate ------------------------------------------------------------------------
 def _positions(mech, q, method="closed"):
     """Positions at driver values ``q`` (SI) by ``method``; an error where the mechanism
-    cannot assemble."""
+    cannot assemble; a vibration problem takes the closed form only."""
+    refuse_driving(mech, method=method)
     solver = solver_for(mech, method)
     kin = solver.positions(q)
     solver.check(kin, velocities=False)
@@ -283,18 +284,19 @@ def _axes_text(ax, scene, title, fontsize):
     ax.grid(True, alpha=0.25)
 
 
-def draw(mech, output: str, dpi: int = 100) -> None:
-    """The mechanism at the file's driver value, with its vector polygon and loads."""
+def draw(mech, output: str, dpi: int = 100, method: str = "closed") -> None:
+    """The mechanism at the file's driver value, with its vector polygon and loads, its
+    positions and loads solved by ``method`` ('closed' or 'newton')."""
     check_output(output, IMAGE_FORMATS)
-    _save_figure(drawn(mech, dpi), output)
+    _save_figure(drawn(mech, dpi, method), output)
 
 
-def drawn(mech, dpi: int = 100):
+def drawn(mech, dpi: int = 100, method: str = "closed"):
     """The figure of ``draw``, its labels apart."""
     dyn = mech.dynamics
-    kin = _positions(mech, figure_coordinates(mech))
+    kin = _positions(mech, figure_coordinates(mech), method)
     scene = Scene(mech, kin.pos)
-    values, units_text = _load_values(mech)
+    values, units_text = _load_values(mech, method)
     fig = figure(8.0, 6.5, dpi)
     ax = fig.add_subplot(1, 1, 1)
     view = [scene.p[n] for n in mech.points] + disc_points(mech, dyn, scene)
@@ -320,11 +322,12 @@ def figure_coordinates(mech):
     return values[0] if len(values) == 1 else tuple(values)
 
 
-def _load_values(mech):
-    """({load: value}, {load: unit}) at the file's position, for the loads that are solved."""
+def _load_values(mech, method="closed"):
+    """({load: value}, {load: unit}) at the file's position, for the loads that are solved
+    (by ``method``)."""
     values, units_text = {}, {}
     if mech.loads and mech.elements is None:
-        result = evaluate(mech, names=list(mech.loads))
+        result = evaluate(mech, names=list(mech.loads), method=method)
         for name in mech.loads:
             if name in result.values:
                 values[name] = float(np.asarray(result.values[name]).reshape(-1)[0])
@@ -337,7 +340,7 @@ def animate(mech, output: str, sweep: str | None = None, fps: int = 12, dpi: int
     """The motion over ``sweep`` as an animated GIF, at most MAX_FRAMES frames, each written
     to the file as soon as it is drawn; branch points of the motion go to ``notify`` (as
     for :func:`plot`).  Returns the frame count."""
-    from linkcli.answers.sweep import Sweeper
+    from linkcli.runs.sweep import Sweeper
     check_output(output, ("gif",))
     require_driver(mech, "an animation")
     dyn = mech.dynamics

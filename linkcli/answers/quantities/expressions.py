@@ -3,7 +3,11 @@
 An expression is evaluated in SI: each name it reads is solved with the other answers
 (in its display unit, then converted by the factor of that unit: model.units.parse_unit),
 a parameter is its value in the unit the file writes it in (model.dimensions.param_unit),
-and the result is shown in the expression's own unit.  Over a sweep every name is an
+and the result is shown in the expression's own unit.  The factors are the tables' and
+the same for every path (display, find targets, keys): a frequency is its angular
+frequency in rad/s whatever unit it is shown in (1 Hz = 2 pi rad/s, 1 rpm = 2 pi/60
+rad/s), so ``w1 - f1`` is 0 for one frequency shown in rad/s and in Hz, and its period is
+``2*pi/f1``.  Over a sweep every name is an
 array and so is the result.  A rate of an expression (``Tdot``) is the chain rule's:
 each name is bound to its value and rates (input.expressions.Rates), so
 d/dt f(a, b) = f_a a' + f_b b' and likewise the second rate; a parameter's rates are 0.
@@ -21,7 +25,7 @@ from linkcli.errors import ExpressionError, SolveError
 from linkcli.input.expressions import Expression, Rates
 from linkcli.model.dimensions import dimension, param_unit
 from linkcli.model.mechanism import split_rate
-from linkcli.model.units import cycles, parse_unit
+from linkcli.model.units import parse_unit
 
 EXPR = "expr"
 SUFFIX = ("", "dot", "ddot")
@@ -29,13 +33,14 @@ SUFFIX = ("", "dot", "ddot")
 
 def is_expression(mech, name) -> bool:
     """Whether ``name`` is an expression quantity or one of its rates."""
-    q = mech.quantities.get(split_rate(name)[0])
+    q = mech.quantities.get(split_rate(name, mech.quantities)[0])
     return q is not None and q.kind == EXPR
 
 
-def rate_name(name: str, order: int) -> str:
-    """The name of the rate of ``order`` of the answer ``name`` (itself a rate, perhaps)."""
-    base, level = split_rate(name)
+def rate_name(name: str, order: int, names=()) -> str:
+    """The name of the rate of ``order`` of the answer ``name`` (itself a rate, perhaps; of
+    one of ``names``, the quantities: model.mechanism.split_rate)."""
+    base, level = split_rate(name, names)
     return base + SUFFIX[level + order]
 
 
@@ -45,21 +50,21 @@ def expand(mech, names) -> tuple[list, list]:
     solve, exprs = [], {}
 
     def need(name, order):
-        base, level = split_rate(name)
+        base, level = split_rate(name, mech.quantities)
         quantity = mech.quantities.get(base)
         if quantity is not None and quantity.kind == EXPR:
             order += level
             if order <= exprs.get(base, -1):
                 return
             for used in Expression(quantity.a).names:
-                if split_rate(used)[0] in mech.quantities:
+                if split_rate(used, mech.quantities)[0] in mech.quantities:
                     need(used, order)
             exprs.pop(base, None)          # after the ones it reads
             exprs[base] = order
             return
         if quantity is None and name in mech.params:
             return
-        solve.extend(rate_name(name, i) for i in range(order + 1))
+        solve.extend(rate_name(name, i, mech.quantities) for i in range(order + 1))
 
     for name in names:
         need(name, 0)
@@ -97,14 +102,7 @@ def unit_of(quantity) -> tuple[str, float]:
     """(unit name, SI factor) an expression is shown in: its ``unit``, or none."""
     if not quantity.unit:
         return "", 1.0
-    return quantity.unit, expression_factor(quantity.unit)
-
-
-def expression_factor(unit: str, dim=None) -> float:
-    """The SI value of one ``unit`` in an expression: the tables' factor, a unit that counts
-    cycles (Hz, rpm) counting them as SI does (1 Hz = 1/s, not 2 pi rad/s), so that a
-    frequency f shown in Hz gives T = 1/f and an angular one w in rad/s T = 2*pi/w."""
-    return parse_unit(unit, dim)[1] / (2 * np.pi) ** cycles(unit)
+    return quantity.unit, parse_unit(quantity.unit, quantity.dimension)[1]
 
 
 def rate_unit(unit: str, level: int) -> str:
@@ -122,13 +120,13 @@ def rate_unit(unit: str, level: int) -> str:
 
 def _bound(mech, result, own, used, order):
     """The value (SI) a name read by an expression is bound to, with ``order`` rates."""
-    base, level = split_rate(used)
+    base, level = split_rate(used, mech.quantities)
     if base in own and not level:
         value = own[base]
         return value if order == 0 or not isinstance(value, Rates) else \
             Rates(value.terms[:order + 1])
     if base in mech.quantities:
-        terms = [in_si(mech, result, rate_name(used, i)) for i in range(order + 1)]
+        terms = [in_si(mech, result, rate_name(used, i, mech.quantities)) for i in range(order + 1)]
         return terms[0] if order == 0 else Rates(terms)
     if used == "k":
         return float(mech.k)
@@ -140,11 +138,10 @@ def in_si(mech, result, name):
     """An answer of ``result`` (display units) in SI."""
     value = np.asarray(result.values[name], dtype=float)
     unit = result.units.get(name, "")
-    dim = dimension(mech, name)
-    if parse_unit(unit, dim) is None:   # pragma: no cover - every answer's unit is readable
+    parsed = parse_unit(unit, dimension(mech, name))
+    if parsed is None:   # pragma: no cover - every answer's unit is readable
         raise SolveError(f"the unit '{unit}' of '{name}' cannot be read", file=mech.file)
-    factor = expression_factor(unit, dim)
-    return value * factor if value.ndim else float(value) * factor
+    return value * parsed[1] if value.ndim else float(value) * parsed[1]
 
 
 class Derived:

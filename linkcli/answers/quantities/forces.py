@@ -18,12 +18,15 @@ from linkcli.model.units import FORCE
 
 def loads_at(mech, solver, kin, names, context=None):
     """SI values of every load, solving the unknown one when a load is asked for (with
-    losses, from the joint forces of ``context``, solved once for every answer)."""
-    wanted = any(mech.quantities.get(split_rate(n)[0]) is not None
-                 and mech.quantities[split_rate(n)[0]].kind == "load" for n in names)
+    losses, from the joint forces of ``context``, solved once for every answer); a
+    vibration problem's loads are all known."""
+    bases = [mech.quantities.get(split_rate(n, mech.quantities)[0]) for n in names]
+    wanted = any(q is not None and q.kind == "load" for q in bases)
     if not wanted:
         return {}
     values = {n: load.value for n, load in mech.loads.items()}
+    if mech.elements is not None:   # a vibration problem: every load known (input.loads)
+        return values
     unit_kin = solver.velocities(kin.at_rest(), np.ones_like(kin.q))
     unknown = mech.unknown_load()
     extra = 0.0

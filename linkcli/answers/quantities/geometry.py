@@ -88,13 +88,30 @@ def override_unit(unit, base, order):
 
 
 def angle_period(mech, name: str, unit: str) -> float | None:
-    """The turn (360 in deg, 2 pi in rad) of a quantity that is an angle, compared and
-    plotted modulo a turn: an angle, a rotation, the angle between two vectors or an angle
-    driver (not their rates); None for any other quantity."""
-    base, order = split_rate(name)
-    quantity = mech.quantities[base]
-    is_angle = quantity.angular or (quantity.kind == "q" and mech.driver is not None
-                                    and mech.driver.kind == "angle")
-    if order or not is_angle:
+    """The turn (360 in deg, 2 pi in rad) of a quantity that is a direction, compared and
+    plotted modulo a turn (:func:`is_direction`); None for any other quantity and for every
+    rate."""
+    base, order = split_rate(name, mech.quantities)
+    if order or not is_direction(mech, mech.quantities[base]):
         return None
     return 360.0 if unit == "deg" else 2 * math.pi
+
+
+def is_direction(mech, quantity) -> bool:
+    """Whether ``quantity`` is an angle that names a direction, the same one turn off: an
+    angle, a rotation, the angle between two vectors, an angle driver, the driver value of
+    an extreme when the driver is an angle, the extreme of a direction, the equilibrium of
+    an angle coordinate and a phase (-180 and 180 deg alike).  A swing (a stroke), an
+    amplitude or a largest excursion measures an angle's size instead, and is not one."""
+    kind = quantity.kind
+    if quantity.angular or kind == "phase":
+        return True
+    if kind in ("q", "at_maximum", "at_minimum"):
+        return mech.driver is not None and mech.driver.kind == "angle"
+    if kind in ("maximum", "minimum"):
+        base, order = split_rate(quantity.a, mech.quantities)
+        return not order and base in mech.quantities and \
+            is_direction(mech, mech.quantities[base])
+    if kind == "equilibrium":
+        return any(c.name == quantity.a and c.base == "angle" for c in mech.coordinates)
+    return False

@@ -59,7 +59,7 @@ def needed_orders(mech, names):
     from linkcli.answers.quantities.expressions import expand
     names, _ = expand(mech, names)
     for name in names:
-        base, order = split_rate(name)
+        base, order = split_rate(name, mech.quantities)
         quantity = mech.quantities.get(base)
         if quantity is not None and quantity.kind != "load":
             require_rate(mech, name, quantity, order)
@@ -162,7 +162,7 @@ class Plan:
         self._order = None
         self.wants_loads = False
         for name in self.names:
-            base, order = split_rate(name)
+            base, order = split_rate(name, mech.quantities)
             quantity = mech.quantities.get(base)
             if quantity is not None and quantity.kind == "load":
                 self.wants_loads = True
@@ -221,9 +221,8 @@ class Plan:
                 return result
         result = self.collect(mech, solver, solved(solver, order, *driver))
         if q is None:       # the file's own position: what the figure check says of it
-            from linkcli.answers.validate import figure_cautions
-            result.cautions = (figure_cautions(mech) if self.method == "closed" else []) + \
-                result.cautions
+            from linkcli.kinematics.solvers import figure_cautions
+            result.cautions = figure_cautions(mech, self.method, self.tol) + result.cautions
         return result
 
     @property
@@ -410,7 +409,7 @@ def _require_finite(mech, named):
 
 
 def value_of(mech, name, kin, loads, context=None):
-    base_name, order = split_rate(name)
+    base_name, order = split_rate(name, mech.quantities)
     quantity = mech.quantities[base_name]
     units = mech.units
     if quantity.kind == "design":           # a solved parameter: the file's value

@@ -22,7 +22,7 @@ def row_of(mech, name):
     :class:`AngleRow` instead, evaluated with the plan's other angles (:class:`Angles`);
     (None, None): the value and its unit come from :func:`value_of` (the driver, textbook
     kinds, loads)."""
-    base_name, order = split_rate(name)
+    base_name, order = split_rate(name, mech.quantities)
     quantity = mech.quantities.get(base_name)
     if quantity is None or quantity.kind not in ("angle", "length", "x", "y") \
             or quantity.kind in TEXTBOOK:

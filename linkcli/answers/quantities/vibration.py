@@ -17,7 +17,7 @@ Each answer is computed in SI with its dimension (:class:`Answer`) and shown in 
 
 Geometric quantities of the position section are evaluated at the equilibrium.
 
-The formulas of the same problem (``--symbolic``) are ``answers.symbolic``'s, its twin.
+The formulas of the same problem (``--symbolic``) are ``texts.symbolic``'s, its twin.
 """
 from __future__ import annotations
 
@@ -33,6 +33,7 @@ from linkcli.input.oscillation import OSCILLATION
 from linkcli.forces.lagrange import Lagrangian
 from linkcli.kinematics import jacobian as jac
 from linkcli.kinematics.solvers import solver_for
+from linkcli.kinematics.topology import SEVERAL_DRIVERS
 from linkcli.model.mechanism import VIBRATION, split_rate
 from linkcli.model.dimensions import FREQUENCY_DIM, coordinate_dim, generalised_force_dim, \
     matrix_dim, of_quantity
@@ -116,11 +117,14 @@ def analyse(mech) -> Analysis:
 def evaluate(mech, names, result):
     """Fill ``result`` (values, units) with ``names`` of a vibration problem."""
     for name in names:
-        base, order = split_rate(name)
+        base, order = split_rate(name, mech.quantities)
         if order and name not in mech.quantities:
-            raise InputError(f"'{name}': a vibration problem has no driver rates",
+            raise InputError(f"'{name}': a file with 'coordinates:' is a vibration problem, "
+                             "solved at its static equilibrium: it has no driver rates",
                              file=mech.file, key="report",
-                             hint="ask for amplitudes, frequencies or the free response")
+                             hint="ask for amplitudes, frequencies or the free response; a "
+                             "mechanism moved at given input rates takes a 'driver:' instead: "
+                             + SEVERAL_DRIVERS)
     analysis = analyse(mech)
     geometric = [n for n in names if mech.quantities[n].kind not in VIBRATION]
     if geometric or mech.report.get("points"):
@@ -292,19 +296,26 @@ def _frequency(analysis, quantity) -> float:
     _require_stiffness(analysis, quantity, k, "it has no damped frequency")
     damped = analysis.damped()
     if not damped.oscillates[k]:
-        zeta = float(damped.zeta[k])
         rates = _rates(analysis, damped.decay(k))
-        critical = abs(damped.roots[k, 0].imag) > 0
-        how = (f"critically damped (zeta = {zeta:.6g}): it returns without oscillating, "
-               f"at the decay rate {rates[0]}") if critical else \
-            (f"overdamped (zeta = {zeta:.6g}): it returns without oscillating, as the sum of "
-             f"two decays at the rates {rates[0]} and {rates[1]}")
+        critical = bool(damped.critical[k])
+        how = (f"critically damped (zeta = 1): it returns without oscillating, at the decay "
+               f"rate {rates[0]}") if critical else \
+            (f"overdamped (zeta = {zeta_text(damped.zeta[k])}): it returns without "
+             f"oscillating, as the sum of two decays at the rates {rates[0]} and {rates[1]}")
         raise ModeError(f"'{quantity.name}': mode {k + 1} is {how}, so it has no damped "
-                        "frequency", file=analysis.mech.file, mode=k + 1,
+                        "frequency", file=analysis.mech.file, key=f"quantities.{quantity.name}",
+                        line=quantity.line, mode=k + 1,
                         reason="critically damped" if critical else "overdamped",
                         values=damped.decay(k),
                         hint="ask its damping_ratio; a damped frequency needs zeta < 1")
     return float(damped.omega_d[k])
+
+
+def zeta_text(zeta) -> str:
+    """A damping ratio to 6 digits, or to all of them where those would read 1 (an
+    overdamped or underdamped mode next to critical damping)."""
+    text = f"{float(zeta):.6g}"
+    return repr(float(zeta)) if text == "1" else text
 
 
 def _rates(analysis, values) -> list:
@@ -325,7 +336,8 @@ def _require_stiffness(analysis, quantity, k, what) -> None:
     raise ModeError(f"'{quantity.name}': mode {k + 1} has no stiffness (natural frequency 0: "
                     f"no spring or gravity holds it at the equilibrium), so {what} is "
                     f"undefined; its roots are s = {roots} {unit}", file=analysis.mech.file,
-                    mode=k + 1, reason="no stiffness", values=analysis.damped().decay(k),
+                    key=f"quantities.{quantity.name}", line=quantity.line, mode=k + 1,
+                    reason="no stiffness", values=analysis.damped().decay(k),
                     hint="add a spring or gravity that holds the mode, or ask only for its "
                     "natural frequency")
 
@@ -346,7 +358,8 @@ def _mode_shape(analysis, quantity) -> float:
         raise ModeError(f"'{quantity.name}': modes {others} share the natural frequency "
                         f"{number:.6g} {unit}, so their shapes are any combination of theirs: "
                         "a component of one of them is not defined", file=mech.file,
-                        mode=k + 1, reason="repeated", values=(found.omega[k],),
+                        key=f"quantities.{quantity.name}", line=quantity.line, mode=k + 1,
+                        reason="repeated", values=(found.omega[k],),
                         hint="make a mass or a spring slightly different to break the "
                         "symmetry, or ask for the frequency only")
     if not found.moves(ref, k):
@@ -356,7 +369,8 @@ def _mode_shape(analysis, quantity) -> float:
                         f"{k + 1}: it moves less than {found.still[k]:.1e} of the largest "
                         f"component ({largest}'s, in energy), zero within the eigenvector's "
                         f"accuracy, so the ratio {names[i]}/{names[ref]} is undefined",
-                        file=mech.file, mode=k + 1, reason="does not move",
+                        file=mech.file, key=f"quantities.{quantity.name}", line=quantity.line,
+                        mode=k + 1, reason="does not move",
                         values=(found.size[ref, k],),
                         hint=f"list first under 'coordinates:' a coordinate that moves in "
                         f"mode {k + 1}, such as {largest}: the shapes are normalised by the "
@@ -573,10 +587,13 @@ def _mode_lines(analysis, found) -> list:
                          f"{shown(units, Answer(1.0, Dimension(time=-1)))[1]}")
         elif d.oscillates[k]:
             wd = _text(units, Answer(float(d.omega_d[k]), FREQUENCY_DIM, "frequency"))
-            lines.append(f"  damped {k + 1}: zeta = {d.zeta[k]:.6g}, omega_d = {wd}")
+            lines.append(f"  damped {k + 1}: zeta = {zeta_text(d.zeta[k])}, omega_d = {wd}")
+        elif d.critical[k]:
+            lines.append(f"  damped {k + 1}: zeta = 1, critically damped: decay rate "
+                         f"{_rates(analysis, d.decay(k))[0]}")
         else:
             rates = " and ".join(_rates(analysis, d.decay(k)))
-            lines.append(f"  damped {k + 1}: zeta = {d.zeta[k]:.6g}, overdamped: decay "
+            lines.append(f"  damped {k + 1}: zeta = {zeta_text(d.zeta[k])}, overdamped: decay "
                          f"rates {rates}")
     if np.any(d.share < 1 - 1e-6):
         lines.append("  (damping couples the modes: each pair of roots is the undamped mode "

@@ -1,0 +1,73 @@
+"""The answer sheet of a mechanism file: its report evaluated by the path it needs.
+
+A file with a driver is solved at driver value(s) q (``answers.quantities``);
+a vibration problem, declared with coordinates, at its static equilibrium
+(``answers.quantities.vibration``).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from linkcli.answers import quantities
+from linkcli.runs import design
+from linkcli.answers.quantities import Result, expressions
+from linkcli.errors import InputError
+
+
+def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
+             tol=None) -> Result:
+    """Every name of ``names`` (default: the report's) in its display unit; a design
+    question answered first (``design``: the file built with its unknowns' solution),
+    expression quantities worked out from the answers they read (``quantities.expressions``)."""
+    refuse_driving(mech, q, qdot, qddot, method)
+    if design.unsolved(mech):       # each trial by the method asked
+        mech = design.resolved(mech, evaluate, method, tol)
+    names = list(names) if names is not None else quantities.report_names(mech)
+    solve, exprs = expressions.expand(mech, names)
+    solved = [n for n in solve if _kind(mech, n) == "design"]
+    result = _evaluate(mech, q, qdot, qddot, [n for n in solve if n not in solved], method,
+                       tol)
+    for name in solved:         # a solved parameter: the value the file was built with
+        value, result.units[name] = design.answer(mech, name)
+        shape = np.shape(getattr(result.kinematics, "q", None)) if q is not None else ()
+        result.values[name] = np.full(shape, value) if shape else value
+    if exprs or solved:
+        expressions.complete(mech, result, names, exprs)
+    if mech.design is not None:     # the figure is drawn for the parameters' start values
+        result.cautions = [c for c in result.cautions if c.kind != "figure"]
+    return result
+
+
+def _kind(mech, name):
+    quantity = mech.quantities.get(name)
+    return quantity.kind if quantity is not None else None
+
+
+def _evaluate(mech, q, qdot, qddot, names, method, tol) -> Result:
+    """``names`` (none an expression) by the path they need."""
+    if mech.elements is None:       # a file with a driver: no vibration modules to import
+        if _asks_limits(mech, names):   # maxima, strokes ...: runs.limits
+            from linkcli.runs.limits import report as limit_report
+            return limit_report.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
+        return quantities.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
+    from linkcli.answers.quantities import vibration
+    return vibration.evaluate(mech, list(names), Result(mech))
+
+
+def refuse_driving(mech, q=None, qdot=None, qddot=None, method="closed") -> None:
+    """A vibration problem (``elements``) is solved at its static equilibrium, by the closed
+    form: driver values, rates or another method are refused by name (before a design
+    question's trials are solved, and by the commands that draw or sweep one)."""
+    if mech.elements is None:
+        return
+    if q is not None or qdot is not None or qddot is not None or method != "closed":
+        raise InputError("a vibration problem is solved at its static equilibrium: it takes no "
+                         "driver values, rates or method", file=mech.file,
+                         key="--method" if method != "closed" else None,
+                         hint="drop q, qdot, qddot and --method")
+
+
+def _asks_limits(mech, names) -> bool:
+    """Whether ``names`` (default: the report's) hold a limit of the motion."""
+    names = quantities.report_names(mech) if names is None else names
+    return any(getattr(mech.quantities.get(n), "limit", False) for n in names)

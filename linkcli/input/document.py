@@ -15,7 +15,7 @@ from linkcli.errors import InputError
 from linkcli.model.mechanism import Body, Mechanism, Quiz, split_rate
 from linkcli.model.units import Units
 from linkcli.input.source import Document
-from linkcli.input.report import SECTIONS, AnswersSection
+from linkcli.input.quantities import SECTIONS, QuantitiesSection
 from linkcli.input.bodies import BodiesSection
 from linkcli.input.contacts import ContactsSection
 from linkcli.input.derived import DerivedSection
@@ -37,7 +37,7 @@ __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS
            "NAME", "_Skip"]
 
 
-class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSection,
+class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSection,
              DerivedSection, OscillationSection, FindSection):
     """The whole document: units, params, frame and points, then each section."""
 

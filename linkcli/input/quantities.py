@@ -96,7 +96,7 @@ def _same(q: Quantity, automatic: Quantity) -> bool:
     return dataclasses.replace(q, unit=None) == automatic
 
 
-class AnswersSection:
+class QuantitiesSection:
     """``quantities``, ``report`` and ``keys`` (a mixin of the Parser)."""
 
     def quantities(self, data, pool, loads, driver) -> dict:

@@ -40,12 +40,14 @@ test: $(VENV)/.installed-test
 check: $(VENV)/.installed
 	$(BIN)/linkcli check mechanisms/
 
-## explore: the property tests of singular positions, the fuzzing, and every shipped file
-## turned, moved and scaled, with new random cases (`make test` runs them derandomized: the
-## same cases every time)
+## explore: the property tests of singular positions, the fuzzing, and the invariance of the
+## answers: every shipped file turned, moved and scaled, in other units, orders and names,
+## and solved by the closed form and by Newton over six turns on a fine grid both ways, with
+## new random cases (`make test` runs them derandomized: the same cases every time)
 explore: $(VENV)/.installed-test
 	LINKCLI_EXPLORE=1 $(BIN)/python -m pytest -n auto tests/test_toggles.py tests/test_fuzz.py \
-		tests/test_invariance_geometry.py
+		tests/test_invariance_geometry.py tests/test_invariance_units.py \
+		tests/test_invariance_names.py tests/test_invariance_method.py
 
 ## bench: speed against hand-written NumPy and pylinkage, and of linkcli's compiled loop
 ## (numba and pylinkage installed if PyPI is reachable) at 360 ... 10^7 positions, with

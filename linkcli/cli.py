@@ -491,7 +491,7 @@ def plot(file, sweep, frf, modes, free, vary, names, k, output):
         plot_vary(mech, vary, list(names), output)
         return
     if sweep:
-        from linkcli.runs.limits import sweep_names
+        from linkcli.runs.limits.names import sweep_names
         from linkcli.pictures.plotting import plot as make
         make(mech, sweep, sweep_names(mech, list(names), key="--y"), output)
         return
@@ -708,7 +708,7 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
                              "NAME=FROM:TO:STEPS (a parameter's)", key="--from")
         mech = _load(file, k, method=method, tol=_tol(tol))
         q = sweep_mod.driver_range(start, stop, steps, step)
-        from linkcli.runs.limits import sweep_names
+        from linkcli.runs.limits.names import sweep_names
         chosen = sweep_names(mech, chosen)      # maxima, strokes ... are not functions of q
         sweep_mod.check_every(every)
         sweeper = sweep_mod.Sweeper(mech, q, chosen, method=method, tol=_tol(tol))
@@ -762,15 +762,15 @@ def limits(file, names, start, stop, form, decimals, k, output):
       linkcli limits mechanisms/polimi-crank-slider.yaml --of c --of cdot
       linkcli limits mechanisms/khurmi-15-3-max-piston-velocity.yaml --of vP --from 0 --to 180
     """
-    from linkcli.runs import limits as limits_mod
+    from linkcli.runs.limits import names as limit_names, search, table
     _not_an_input(output, file)
     mech = _load(file, k)
     decimals = mech.report.get("decimals", 1) if decimals is None else decimals
-    found = [limits_mod.find(mech, name, start, stop)
-             for name in (names or limits_mod.default_names(mech))]
-    _emit(limits_mod.render(found, form, decimals), output)
+    found = [search.find(mech, name, start, stop)
+             for name in (names or limit_names.default_names(mech))]
+    _emit(table.render(found, form, decimals), output)
     if form != "json":
-        for text in limits_mod.messages(found):
+        for text in table.messages(found):
             _echo(text, err=True, prefix="linkcli: ")
 
 

@@ -21,6 +21,10 @@ def fuzz_counter():
 
 
 def pytest_terminal_summary(terminalreporter):
+    if _INVARIANCE:
+        terminalreporter.write_sep("-", f"invariance: {sum(_INVARIANCE.values())} cases")
+        for group, count in sorted(_INVARIANCE.items()):
+            terminalreporter.write_line(f"  {group}: {count}")
     if not _FUZZ_COUNTS:
         return
     total = sum(c["cases"] for c in _FUZZ_COUNTS.values())
@@ -37,9 +41,21 @@ def pytest_sessionfinish(session):
     output = getattr(session.config, "workeroutput", None)
     if output is not None:
         output["fuzz_counts"] = {group: dict(c) for group, c in _FUZZ_COUNTS.items()}
+        output["invariance_counts"] = dict(_INVARIANCE)
 
 
 @pytest.hookimpl(optionalhook=True)
 def pytest_testnodedown(node, error):
     for group, counts in getattr(node, "workeroutput", {}).get("fuzz_counts", {}).items():
         _FUZZ_COUNTS[group].update(counts)
+    _INVARIANCE.update(getattr(node, "workeroutput", {}).get("invariance_counts", {}))
+
+
+# --- invariance: how many files x rewritings were compared (tests/test_invariance_*.py) ---
+_INVARIANCE = collections.Counter()
+
+
+@pytest.fixture(scope="session")
+def invariance_counter():
+    """Counters of the invariance tests: file-and-digit cases compared, by rewriting."""
+    return _INVARIANCE

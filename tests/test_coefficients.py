@@ -77,3 +77,17 @@ report: {vibration: [w, ye]}
     varied = linkage.vary("ks", [400.0, 1600.0])
     assert varied.values["ye"] == pytest.approx(-2 * 9.81 / np.array([400.0, 1600.0]),
                                                 rel=1e-9)
+
+
+def test_an_expression_keeps_its_own_unit():
+    """An expression among the answers (the static deflection, in m) swept over a spring's
+    stiffness: its unit was looked up among the answers it reads (KeyError, exit 70).  The
+    deflection of 4 kg is M g / ks, the period 2 pi sqrt(M / ks)."""
+    linkage = linkcli.load(os.path.join(ROOT, "mechanisms/vib-cdquestions-spring-mass.yaml"))
+    ks = np.array([900.0, 1000.0, 1100.0])
+    _, _, units = coefficients.sweep(linkage.model, "ks", ks, ["delta", "T"], evaluate)
+    assert units == {"delta": "m", "T": "s"}
+    varied = linkage.vary("ks", ks)
+    assert varied.solved.all()
+    assert varied.values["delta"] == pytest.approx(4 * 9.81 / ks, rel=1e-9)
+    assert varied.values["T"] == pytest.approx(2 * np.pi * np.sqrt(4 / ks), rel=1e-9)

@@ -255,8 +255,10 @@ class ElementsReader:
                 else (key, False)
             j = self.coordinate(name, path + (key,))
             base = self.mech.coordinates[j].base
-            kind = base if not rate else ("angular_rate" if base == "angle" else "length")
-            number = self.p.number(item, path + (key,), kind, self.units)
+            if rate:    # in the unit of a driver's rate, a parameter written here too
+                number = self.p.driver_rate(spec, path, key, base, 1, self.units)
+            else:
+                number = self.p.number(item, path + (key,), base, self.units)
             x0, v0 = out.get(j, (0.0, 0.0))
             out[j] = (x0, number) if rate else (number, v0)
         return out

@@ -330,20 +330,7 @@ class Solver:
                 return [Caution("unassembled", f"the file's own position cannot be assembled: "
                                 f"{group.describe()} {where_text(mech, kin.q, True)} {reason} "
                                 "(the branch is the figure's)", mech.file)]
-        points = [complex(np.ravel(pos[p])[0]) for p in mech.points if p in pos]
-        size = max(abs(z - sum(points) / len(points)) for z in points) or 1.0
-        unit, f = mech.units.display("length", 0)
-        far = {p: abs(complex(np.ravel(pos[p])[0]) - mech.moving[p]) for p in mech.moving
-               if p in pos}
-        far = {p: d for p, d in far.items() if d > FAR * size}
-        if not far:
-            return []
-        listed = ", ".join(f"{p} by {d / f:.4g} {unit}" for p, d in
-                           sorted(far.items(), key=lambda item: -item[1]))
-        return [Caution("figure", f"the solved position is far from the figure ({FAR:.0%} of "
-                        f"the mechanism's size is {FAR * size / f:.4g} {unit}): {listed}; "
-                        "check the lengths, the shapes and the driver's points",
-                        mech.file, {p: d / f for p, d in far.items()})]
+        return far_from_figure(mech, pos)
 
     # positions -------------------------------------------------------------------
     def _position(self, group, pos, q, turns=None):
@@ -690,6 +677,25 @@ def _dist_rhs(c, fixed):
                 r = r + 2.0 * kin.rates[j] * kin.rates[j]
         return r
     return rhs
+
+
+def far_from_figure(mech, pos) -> list:
+    """The caution listing the points solved (``pos``: every point at the file's own
+    coordinates) farther than FAR of the mechanism's size from the figure's, if any."""
+    points = [complex(np.ravel(pos[p])[0]) for p in mech.points if p in pos]
+    size = max(abs(z - sum(points) / len(points)) for z in points) or 1.0
+    unit, f = mech.units.display("length", 0)
+    far = {p: abs(complex(np.ravel(pos[p])[0]) - mech.moving[p]) for p in mech.moving
+           if p in pos}
+    far = {p: d for p, d in far.items() if d > FAR * size}
+    if not far:
+        return []
+    listed = ", ".join(f"{p} by {d / f:.4g} {unit}" for p, d in
+                       sorted(far.items(), key=lambda item: -item[1]))
+    return [Caution("figure", f"the solved position is far from the figure ({FAR:.0%} of "
+                    f"the mechanism's size is {FAR * size / f:.4g} {unit}): {listed}; "
+                    "check the lengths, the shapes and the driver's points",
+                    mech.file, {p: d / f for p, d in far.items()})]
 
 
 def assembly_error(mech, group, q, bad, worst, reason) -> AssemblyError:

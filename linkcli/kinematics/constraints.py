@@ -9,16 +9,23 @@ length scale), so its gradient is analytic:
 and the Jacobian J = dg/dX is dimensionless.  Velocities solve J v = -dg/dq qdot;
 accelerations J a = -(d2g/dt2 without the unknown accelerations).
 
-Each rolling contact or cord adds the row g = a wrap(sum c_k (mu_k - mu_k0)) of its
-relation (``kinematics.contacts``; a the arm |M - C| of its disc, so that g is a length;
-wrapped to half a turn, so that the disc may turn any number of times), with
+Each rolling contact or cord adds the row g = a sum c_k (mu_k - mu_k0) of its relation
+(``kinematics.contacts``; a the arm |M - C| of its disc, so that g is a length), with
 dg = a sum_P Re(conj(G_P) dP).
+
+A turn measured on points (a disc's, an arm's: ``Turn`` without a coordinate) is counted
+continuously, any number of turns: each row of X carries, after the n unknowns, the
+absolute angle W_k of every such vector at a configuration it was reached from, and the
+angle now is theta_k = W_k + arg(Z_k e^{-i W_k}), Z_k = P_b - P_a (exact while the vector
+turns less than half a turn between the two; :meth:`Constraints.rebase` moves W_k to
+theta_k after every Newton step).  Rows that carry no such angles start from the
+figure's: within half a turn of it (:meth:`Constraints.augment`).
 """
 from __future__ import annotations
 
 import numpy as np
 
-from linkcli.kinematics.contacts import relations
+from linkcli.kinematics.contacts import Turn, relations
 from linkcli.kinematics.dyads import cis
 from linkcli.kinematics.equations import ONE, ZERO, mechanism_rows
 from linkcli.errors import StructureError
@@ -34,6 +41,7 @@ class Constraints:
         self.rows = [r for r in rows if self._moves(r)]
         self.contacts = [(rel, _arm(mech, rel)) for rel in relations(mech).values()]
         self.n = 2 * self.nm
+        self._name_turns(mech)
         self._require_square()
         self._stack(self.rows)
         self.shortest = min(lengths) if lengths else None
@@ -48,6 +56,22 @@ class Constraints:
         self.nf, self.nm = len(fixed), len(self.moving)
         self.zero, self.one = len(self.names) - 2, len(self.names) - 1
         self.base = np.array([mech.fixed[n] for n in fixed] + [0j] * self.nm + [0j, 1 + 0j])
+
+    def _name_turns(self, mech):
+        """The turns measured on points (``turns``: their point pairs, ``turn_figure``: their
+        angles on the figure) and ``width``, the columns of X (the unknowns, then W)."""
+        pairs = []
+        for rel, _ in self.contacts:
+            for term, _, _ in rel.terms:
+                if isinstance(term, Turn) and term.coord is None and \
+                        (term.a, term.b) not in pairs:
+                    pairs.append((term.a, term.b))
+        self.turns = pairs
+        self._turn_ends = (np.array([self.names.index(a) for a, _ in pairs], int),
+                           np.array([self.names.index(b) for _, b in pairs], int))
+        figure = {**mech.fixed, **mech.moving}
+        self.turn_figure = np.array([np.angle(figure[b] - figure[a]) for a, b in pairs])
+        self.width = self.n + len(pairs)
 
     def _moves(self, row):
         """Whether the row involves a moving point (else it is an identity of the frame)."""
@@ -85,9 +109,43 @@ class Constraints:
         """All points (N, npts) complex from the unknowns X (N, n)."""
         P = np.empty((X.shape[0], len(self.names)), complex)
         P[:] = self.base
-        P.real[:, self.nf:self.nf + self.nm] = X[:, 0::2]
-        P.imag[:, self.nf:self.nf + self.nm] = X[:, 1::2]
+        P.real[:, self.nf:self.nf + self.nm] = X[:, 0:self.n:2]
+        P.imag[:, self.nf:self.nf + self.nm] = X[:, 1:self.n:2]
         return P
+
+    # turns counted continuously ----------------------------------------------------
+    def _angles(self, P, W):
+        """theta_k = W_k + arg(Z_k e^{-i W_k}) (N, m): each turn's angle nearest W_k."""
+        a, b = self._turn_ends
+        return W + np.angle((P[:, b] - P[:, a]) * cis(-W))
+
+    def rebase(self, X):
+        """X with its angles W moved to the angles of its own points (in place)."""
+        if self.turns:
+            X[:, self.n:] = self._angles(self.points(X), X[:, self.n:])
+        return X
+
+    def moved(self, X, dx):
+        """X with the unknowns moved by dx (N, n), its angles following (a new array)."""
+        out = np.array(X, dtype=float)
+        out[:, :self.n] += dx
+        return self.rebase(out)
+
+    def augment(self, X):
+        """Unknowns X (N, n) with the angles W of their turns within half a turn of the
+        figure's (N, width)."""
+        out = np.empty((X.shape[0], self.width))
+        out[:, :self.n] = X[:, :self.n]
+        out[:, self.n:] = self.turn_figure
+        return self.rebase(out)
+
+    def turn_rates(self, X, V):
+        """d theta_k = Im(dZ_k / Z_k) for the point rates V (N, n): the rates of W."""
+        a, b = self._turn_ends
+        P, D = self.points(X), self.points(V)
+        D[:, :self.nf] = 0
+        D[:, self.nf + self.nm:] = 0
+        return ((D[:, b] - D[:, a]) / (P[:, b] - P[:, a])).imag
 
     def _uv(self, P, q):
         """U = P_c - P_b (+ e^{iq} on driving-angle rows) and V = P_p - P_a, (N, R) each."""
@@ -107,9 +165,9 @@ class Constraints:
         return g * self.inv_scale
 
     def residual(self, X, q):
-        """Scaled residuals (N, R), lengths."""
+        """Scaled residuals (N, R), lengths; X (N, width) (see :meth:`augment`)."""
         P = self.points(X)
-        return self._with_contacts(self._residual(*self._uv(P, q), q), P, q)
+        return self._with_contacts(self._residual(*self._uv(P, q), q), P, q, X)
 
     def jacobian(self, P, q, U=None, V=None):
         """Scaled Jacobian (N, R, n) of the residuals with respect to the unknowns."""
@@ -127,20 +185,26 @@ class Constraints:
         """Residuals and Jacobian at once."""
         P = self.points(X)
         U, V = self._uv(P, q)
-        return self._with_contacts(self._residual(U, V, q), P, q), self.jacobian(P, q, U, V)
+        return (self._with_contacts(self._residual(U, V, q), P, q, X),
+                self.jacobian(P, q, U, V))
 
     # contacts -------------------------------------------------------------------
     def _named(self, P):
         """{point name: its column of P} (N,) for the contacts' measures."""
         return {name: P[:, i] for i, name in enumerate(self.names)}
 
-    def _with_contacts(self, g, P, q):
-        """The residuals (N, R) followed by each contact's a wrap(sum c_k (mu_k - mu_k0))."""
+    def _with_contacts(self, g, P, q, X):
+        """The residuals (N, R) followed by each contact's a sum c_k (mu_k - mu_k0), the
+        turns on points theta_k - theta_k0 counted from the angles W of X."""
         if not self.contacts:
             return g
         pos = self._named(P)
-        rows = [arm * np.angle(np.exp(1j * rel.residual(pos, (q,)))) for rel, arm in
-                self.contacts]
+        turns = {}
+        if self.turns:
+            theta = self._angles(P, X[:, self.n:]) - self.turn_figure
+            turns = {pair: theta[:, k] for k, pair in enumerate(self.turns)}
+        rows = [arm * np.broadcast_to(rel.residual(pos, (q,), turns), q.shape)
+                for rel, arm in self.contacts]
         return np.concatenate([g, np.stack(rows, axis=1)], axis=1)
 
     def _contact_jacobian(self, P):

@@ -55,10 +55,20 @@ class Continuation:
 
     def _predict_correct(self, X, dX, q_from, q_to):
         """Correct the predictions X + dX (q_to - q_from), row by row; returns
-        (X, accepted): converged and no farther than JUMP shortest links."""
+        (X, accepted): converged and no farther than :meth:`_allowed` from the prediction."""
         pred = X + dX * (q_to - q_from)[:, None]
         Xc, conv = self.corrector.newton(pred, q_to, CORRECTOR_ITER)
-        return Xc, conv & (np.max(np.abs(Xc - pred), axis=1) <= self.jump)
+        n = self.corrector.system.n
+        return Xc, conv & (np.max(np.abs(Xc[:, :n] - pred[:, :n]), axis=1) <= self._allowed(pred))
+
+    def _allowed(self, pred):
+        """The largest corrector move: JUMP shortest links, or JUMP of how far beyond the
+        mechanism's size a point is predicted from the file's position (a point running off
+        towards infinity, where two guides turn parallel, is followed in steps that grow
+        with its distance, not in millions of steps of a link's size)."""
+        n = self.corrector.system.n
+        far = np.max(np.abs(pred[:, :n] - self.x0[:n]), axis=1) - self.corrector.size
+        return np.maximum(self.jump, JUMP * far)
 
     def _advance(self, X, dX, q, target):
         """Continue from (q, X) to ``target``, doubling the step after a success and
@@ -79,6 +89,12 @@ class Continuation:
             else:
                 h *= 0.5
         return X, dX, q, True
+
+    def reach(self, target):
+        """The configuration at ``target`` continued from (q0, x0), None when missed."""
+        X, _, _, arrived = self._advance(self.x0, self._tangent(self.x0, self.q0), self.q0,
+                                         float(target))
+        return X if arrived else None
 
     def _chain(self, state, targets, anchors):
         """Continue from ``state`` (q, X, dX) through ``targets`` in order, adding every
@@ -131,22 +147,54 @@ class Continuation:
         return state, self._chain(state, back, anchors)[0][0], k + 1
 
     def _restart(self, X_edge, rest):
-        """(k, X) of the first value of ``rest`` Newton assembles from the gap's edge
-        ``X_edge``, else from the file's position; None when neither does."""
+        """(k, X) of the value rest[k] where Newton resumes beyond a gap, from its edge
+        ``X_edge``, the file's position or the figure's with the crank turned to rest[k];
+        None when no start assembles any value.
+
+        The first value assembled on the file's side of the toggles (the sign of det J at
+        the file's position: its assembly branch) is taken when it comes first, or when
+        continuation from it back to the first value assembled on another side stays
+        assembled (that value has the file's branch too); else the first value on any side
+        (a side that changes with the driver itself, as the crossing of two guides' lines
+        after they were parallel)."""
         rest = np.asarray(rest, dtype=float)
-        for start in (X_edge, self.x0):
-            X, ok = self.corrector.newton(np.repeat(start[None], len(rest), axis=0), rest,
-                                          MAX_ITER, damped=True)
-            if ok.any():
-                k = int(np.argmax(ok))
-                return k, X[k]
-        return None
+        own = self._sides(self.x0[None], np.array([self.q0]))[0]
+        starts = [np.repeat(x[None], len(rest), axis=0) for x in (X_edge, self.x0)]
+        if hasattr(self.corrector, "figure_starts"):
+            starts.append(self.corrector.figure_starts(rest))
+        same, other = [], []
+        for start in starts:
+            X, ok = self.corrector.newton(start, rest, MAX_ITER, damped=True)
+            good = ok & (self._sides(X, rest) == own)
+            for mask, found in ((good, same), (ok, other)):
+                if mask.any():
+                    k = int(np.argmax(mask))
+                    found.append((k, X[k]))
+            if same and same[-1][0] == 0:
+                break               # the first value, on the file's side: nothing better
+        if not other:
+            return None
+        first = min(other, key=lambda item: item[0])
+        if not same:
+            return first
+        best = min(same, key=lambda item: item[0])
+        if best[0] == first[0]:
+            return best
+        q = float(rest[best[0]])
+        X, _, _, back = self._advance(best[1], self._tangent(best[1], q), q,
+                                      float(rest[first[0]]))
+        return (first[0], X) if back else first
+
+    def _sides(self, X, q):
+        """The sign of det J at each configuration: which side of the toggles it is on."""
+        system = self.corrector.system
+        return np.sign(np.linalg.det(system.jacobian(system.points(X), q)))
 
     # whole sweeps ---------------------------------------------------------------
     def track(self, qs):
         """Solve every driver value of the flat array ``qs``; returns (X (N, n), ok)."""
         qs = np.asarray(qs, dtype=float)
-        X = np.zeros((qs.size, self.corrector.system.n))
+        X = np.zeros((qs.size, self.corrector.system.width))
         ok = np.zeros(qs.size, bool)
         if qs.size == 0:
             return X, ok

@@ -6,6 +6,8 @@ residual confirms it; at a toggle J is singular and the steps shrink only
 linearly, so a row that stops there counts when its residual is at rounding
 level.  Damped iterations (from a distant start) cap the step at half the
 shortest link and backtrack until the residual norm decreases (Armijo).
+A row of X holds the n unknowns and then the angles of the turns its contacts count
+(:meth:`linkcli.kinematics.constraints.Constraints.rebase`), which follow every step.
 """
 from __future__ import annotations
 
@@ -71,7 +73,7 @@ class Corrector:
             Xa, qa = X[active], q[active]
             dx, big, finite, stuck = self._step(Xa, qa, damped)
             stalled.append(active[stuck])
-            Xa = Xa + dx
+            Xa = self.system.moved(Xa, dx)
             X[active] = Xa
             self.iterations += 1
             conv = self._confirmed(Xa, qa, finite & (big <= limit), limit)
@@ -120,7 +122,8 @@ class Corrector:
         alpha = np.ones(len(q))
         todo = np.arange(len(q))
         for _ in range(HALVINGS):
-            trial = self.system.residual(X[todo] + alpha[todo, None] * dx[todo], q[todo])
+            trial = self.system.residual(self.system.moved(X[todo], alpha[todo, None] * dx[todo]),
+                                         q[todo])
             better = np.sum(trial * trial, axis=1) <= (1 - ARMIJO * alpha[todo]) * f0[todo]
             todo = todo[~better]
             if todo.size == 0:
@@ -129,7 +132,9 @@ class Corrector:
         return dx * alpha[:, None]
 
     def tangent(self, X, q):
-        """dX/dq at solved configurations (the velocities for a unit driver rate)."""
+        """dX/dq at solved configurations (the velocities for a unit driver rate), with
+        the rates of the angles X carries."""
         P = self.system.points(X)
         J = self.system.jacobian(P, q)
-        return solve_linear(J, self.system.rate_rhs(P, q, np.ones_like(q)))
+        V = solve_linear(J, self.system.rate_rhs(P, q, np.ones_like(q)))
+        return np.concatenate([V, self.system.turn_rates(X, V)], axis=1)

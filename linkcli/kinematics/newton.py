@@ -15,7 +15,9 @@ from linkcli.kinematics.constraints import Constraints
 from linkcli.kinematics.continuation import Continuation
 from linkcli.kinematics.corrector import CHUNK, MAX_ITER, Corrector, solve_linear
 from linkcli.errors import AssemblyError, InputError
-from linkcli.kinematics.closed_form import Kinematics, assembly_error, length_text, singular_error, where_text
+from linkcli.kinematics.closed_form import (Kinematics, assembly_error, far_from_figure,
+                                           figure_coordinates, length_text, singular_error,
+                                           where_text)
 from linkcli.kinematics.topology import one_dof
 
 __all__ = ["Constraints", "NewtonSolver", "DEFAULT_TOL", "SINGULAR_NEWTON"]
@@ -61,11 +63,24 @@ class NewtonSolver(Corrector):
         self.q0 = float(mech.driver.value)
         self.x0 = self._nominal()
         self.continuation = Continuation(self, self.q0, self.x0, self.q_scale)
+        #: what the figure check says (as the closed form's): points solved far from it
+        self.undetermined = None
+        self.cautions = far_from_figure(mech, {**self.fixed, **self._points(self.x0[None], ())}) \
+            if mech.as_drawn else []
 
     # the file's position ----------------------------------------------------------
     def _nominal(self):
-        """Solve at the file's driver value, starting from the figure's positions."""
-        X, ok = self.newton(self._figure()[None], np.array([self.q0]), MAX_ITER, damped=True)
+        """Solve at the file's driver value.  Where contacts count turns on points, by
+        continuation from the figure's own driver value (where every turn is the figure's),
+        so that a disc the driver turns by more than half a turn is counted whole; else (or
+        when the driver cannot be followed there) from the figure's positions, a driving
+        crank turned to q0, each turn within half a turn of the figure's."""
+        if self.system.turns:
+            X = self._from_figure()
+            if X is not None:
+                return X
+        start = self.system.augment(self._figure()[None])
+        X, ok = self.newton(start, np.array([self.q0]), MAX_ITER, damped=True)
         if not ok[0]:
             raise AssemblyError(
                 f"Newton cannot assemble the mechanism {where_text(self.mech, self.q0, True)} "
@@ -74,9 +89,24 @@ class NewtonSolver(Corrector):
                 hint="check the lengths and give approximate positions closer to the figure")
         return X[0]
 
-    def _figure(self):
-        """The unknowns at the figure's positions, a driving crank's tip turned to q0:
-        P_tip = P_pivot +- |P_tip - P_pivot| e^{i q0}."""
+    def _from_figure(self):
+        """The file's position continued from the figure's, solved at the driver value the
+        figure draws (an angle on the turn nearest q0); None where either fails."""
+        drawn = figure_coordinates(self.mech)
+        if self.mech.driver.kind == "angle":
+            drawn += 2 * np.pi * round((self.q0 - drawn) / (2 * np.pi))
+        figure = _unknowns([self.mech.moving[name] for name in self.system.moving], 1)
+        X, ok = self.newton(self.system.augment(figure), np.array([drawn]), MAX_ITER,
+                            damped=True)
+        if not ok[0]:
+            return None
+        return Continuation(self, drawn, X[0], self.q_scale).reach(self.q0)
+
+    def _figure(self, q=None):
+        """The unknowns at the figure's positions, a driving crank's tip turned to q
+        (default q0): P_tip = P_pivot +- |P_tip - P_pivot| e^{i q}; a point driven along x
+        (y) moved to x = q (y = q)."""
+        q = self.q0 if q is None else q
         moving = dict(self.mech.moving)
         d = self.mech.driver
         if d.kind == "angle":
@@ -84,8 +114,15 @@ class NewtonSolver(Corrector):
                 if tip in moving and pivot in self.mech.fixed:
                     arm = abs(moving[tip] - self.mech.fixed[pivot])
                     moving[tip] = self.mech.fixed[pivot] + sign * arm * complex(
-                        np.cos(self.q0), np.sin(self.q0))
+                        np.cos(q), np.sin(q))
+        elif d.kind in ("x", "y") and d.a in moving:
+            z = moving[d.a]
+            moving[d.a] = complex(q, z.imag) if d.kind == "x" else complex(z.real, q)
         return _unknowns([moving[name] for name in self.system.moving], 1)[0]
+
+    def figure_starts(self, qs):
+        """Starts (N, width) for the driver values ``qs``: the figure, the crank turned."""
+        return self.system.augment(np.array([self._figure(q) for q in qs]))
 
     # the Solver interface --------------------------------------------------------
     def track(self, qs):

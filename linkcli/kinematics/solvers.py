@@ -83,11 +83,12 @@ def state(mech, q=None, method="closed", tol=None):
     return kin, unit
 
 
-def figure_cautions(mech) -> list:
+def figure_cautions(mech, method="closed", tol=None) -> list:
     """What the figure check found: the figure far from the solved position, an ambiguous or
-    forced branch, a figure that cannot be assembled (the branch is then undetermined)."""
+    forced branch, a figure that cannot be assembled (the branch is then undetermined);
+    with ``method`` newton, the points Newton solves far from the figure."""
     from linkcli.errors import Caution
-    solver = solver_for(mech)
+    solver = solver_for(mech, method, tol)
     out = list(solver.cautions)
     if solver.undetermined:
         out.insert(0, Caution("unassembled", solver.undetermined, mech.file))

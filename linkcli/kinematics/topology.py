@@ -170,6 +170,26 @@ def grubler(mech: Mechanism) -> Grubler:
     return Grubler(bodies, revolutes, prismatics, list(mech.rolling))
 
 
+def repeated_strands(mech: Mechanism) -> list:
+    """[(strand, earlier strand)] of belt strands that repeat an earlier one's relation: the
+    same two discs, both centres on the frame (the strand's run along u then never changes)
+    and the same ratio of turns omega = side other_side (r_D / r) omega_D (``contacts``)."""
+    seen, out = {}, []
+    for r in mech.rolling.values():
+        if r.kind != "belt" or r.center not in mech.fixed or r.track not in mech.fixed:
+            continue
+        ratio = r.side * r.other_side * r.track_radius / r.radius
+        pair = (r.disc, r.other)
+        if pair[::-1] in seen and pair not in seen:
+            ratio, pair = 1.0 / ratio, pair[::-1]
+        first = seen.get(pair)
+        if first is not None and abs(first[1] - ratio) <= 1e-9 * abs(ratio):
+            out.append((r.name, first[0]))
+        else:
+            seen.setdefault(pair, (r.name, ratio))
+    return out
+
+
 #: what to do with a mechanism of several inputs, which one 'driver:' cannot move
 SEVERAL_DRIVERS = ("one driver is supported, not several: hold all inputs but one (their "
                    "points in 'frame:', what rolls on them rolling on the frame) and solve "
@@ -186,6 +206,18 @@ def one_dof(mech: Mechanism) -> Grubler:
     driven = mech.elements is None          # a file with a 'driver:', not 'coordinates:'
     declared = f"1 (the one driver, {driver_text(mech.driver)})" if driven else "1" if n == 1 \
         else f"{n} (the coordinates {', '.join(c.name for c in mech.coordinates)})"
+    repeats = repeated_strands(mech)
+    if repeats and count.dof + len(repeats) == n:
+        strand, first = repeats[0]
+        r = mech.rolling[strand]
+        raise MobilityError(
+            f"the belt strand '{strand}' joins the discs {r.disc} and {r.other} as '{first}' "
+            f"does, at the same ratio of turns, their centres fixed: it repeats that "
+            f"strand's relation and removes no degree of freedom, so Grübler's count says "
+            f"{count.dof} degrees of freedom, not {declared}: {count.formula()}",
+            file=mech.file,
+            key=f"cords.{strand}",
+            hint="leave the repeated strand out: one strand relates the turns of both discs")
     hint = "check that every link, slider and actuator is listed and that pins shared by " \
         "several bodies name the same point"
     if count.dof > n and driven:

@@ -79,13 +79,15 @@ class Issue:
     q_unit: str
     l_unit: str
     index: int = field(default=-1, repr=False, compare=False)   # the group's, for sorting
+    closure: bool = False   # the amount is Newton's closure error, not links' shortfall
 
     def text(self) -> str:
         where = (f"at q = {self.lo:.6g} {self.q_unit}" if self.count == 1 or self.lo == self.hi
                  else f"for q in [{self.lo:.6g}, {self.hi:.6g}] {self.q_unit}")
         if self.kind == "assembly":
             why = "no configuration found" if not math.isfinite(self.amount) else \
-                f"links short by up to {self.amount:.4g} {self.l_unit}"
+                f"no convergence, closure error up to {self.amount:.4g} {self.l_unit}" \
+                if self.closure else f"links short by up to {self.amount:.4g} {self.l_unit}"
             return f"cannot assemble {where}: {self.group}, {why}"
         if self.kind == "singular":
             return (f"velocities undefined {where}: {self.group} at a toggle (conditioning "
@@ -320,7 +322,7 @@ class Sweeper:
             issue.amount = worse(issue.amount, amount)
         else:
             issue = Issue(kind, self._describe(index), q_lo, q_hi, last - first + 1, amount,
-                          self.q_unit, self.l_unit, index)
+                          self.q_unit, self.l_unit, index, self.method == "newton")
             self._issues.append(issue)
         self._open[key] = (issue, last)
 
@@ -418,7 +420,7 @@ class Sweeper:
                           np.array([max(a, b) for a, b in segments]))
         anchors, seg_lo, seg_hi = self._plan
         qs = np.asarray(q_si, dtype=float).ravel()
-        X = np.zeros((qs.size, solver.system.n))
+        X = np.zeros((qs.size, solver.system.width))
         ok = np.zeros(qs.size, bool)
         seg_of = cont._interval_of(qs, seg_lo, seg_hi)
         choose = cont._nearest_anchor(qs, anchors.q, seg_of, seg_lo, seg_hi)

@@ -222,8 +222,7 @@ class Plan:
         result = self.collect(mech, solver, solved(solver, order, *driver))
         if q is None:       # the file's own position: what the figure check says of it
             from linkcli.kinematics.solvers import figure_cautions
-            result.cautions = (figure_cautions(mech) if self.method == "closed" else []) + \
-                result.cautions
+            result.cautions = figure_cautions(mech, self.method, self.tol) + result.cautions
         return result
 
     @property

@@ -14,6 +14,10 @@ Cramer's rule on whole arrays of positions at once.  ``measure`` is
 ``|det| / (|G_1| |G_2|)``, the sine of the angle between the two constraint
 normals: 0 at a toggle (dead point), 1 when best conditioned; it does not
 depend on the length unit.
+
+Its twin in formulas is ``kinematics.symbolic``: the same groups in the same order, each
+point a formula of the coordinates and the parameters, and a linkage's closure equations
+with their rate systems.
 """
 from __future__ import annotations
 

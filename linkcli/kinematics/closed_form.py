@@ -25,7 +25,8 @@ from linkcli.kinematics import dyads
 from linkcli.kinematics.dyads import cross
 from linkcli.errors import AssemblyError, Caution, InputError, SingularError
 from linkcli.kinematics.contacts import Track
-from linkcli.kinematics.topology import Coord, Dist, Line, analyse
+from linkcli.kinematics.assur import analyse
+from linkcli.kinematics.groups import Coord, Dist, Line
 
 SINGULAR = 1e-9
 #: dyads with an assembly branch to choose
@@ -370,7 +371,7 @@ class Solver:
             b, c, value = _guide_of(line, pos, q, turns)
             return dyads.circle_line(pos[dist.a], self._length(dist, q), b, c, value,
                                      group.branch, flat=True, frame=self._frame(line))
-        if kind in ("PRP", "RPP"):         # a point on two lines (RPP: module topology)
+        if kind in ("PRP", "RPP"):         # a point on two lines (RPP: module assur)
             b1, g1, v1 = _guide_of(c1, pos, q, turns)
             b2, g2, v2 = _guide_of(c2, pos, q, turns)
             u1, e1 = dyads.line_frame(b1, g1, v1)

@@ -46,7 +46,7 @@ import numpy as np
 
 from linkcli.kinematics.closed_form import SINGULAR, constant_norms, fixed_guide
 from linkcli.kinematics.dyads import ROUNDING, TOGGLE
-from linkcli.kinematics.topology import Dist
+from linkcli.kinematics.groups import Dist
 
 #: group kinds of a program
 CRANK, RRR, CIRCLE_LINE, PLACE, LINE_DRIVER = 1, 2, 3, 4, 5

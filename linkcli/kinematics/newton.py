@@ -18,7 +18,7 @@ from linkcli.errors import AssemblyError, InputError
 from linkcli.kinematics.closed_form import (Kinematics, assembly_error, far_from_figure,
                                            figure_coordinates, length_text, singular_error,
                                            where_text)
-from linkcli.kinematics.topology import one_dof
+from linkcli.kinematics.grubler import one_dof
 
 __all__ = ["Constraints", "NewtonSolver", "DEFAULT_TOL", "SINGULAR_NEWTON"]
 

@@ -32,7 +32,8 @@ import sympy as sp
 
 from linkcli.errors import SolveError
 from linkcli.kinematics.contacts import Along, Carried, Track, Turn
-from linkcli.kinematics.topology import Dist, Line, analyse
+from linkcli.kinematics.assur import analyse
+from linkcli.kinematics.groups import Dist, Line
 from linkcli.model import exact
 
 

@@ -39,7 +39,7 @@ from linkcli.errors import AtRestError, NoWorkError, AssemblyError, InputError, 
     SolveError
 from linkcli.kinematics import toggles
 from linkcli.kinematics.closed_form import SINGULAR, Kinematics
-from linkcli.kinematics.topology import Dist, Line
+from linkcli.kinematics.groups import Dist, Line
 from linkcli.model.mechanism import split_rate
 from linkcli.answers.memory import LONG, keep_freed_memory
 from linkcli.answers.quantities import needed_orders, plan_for, report_names, require_driver

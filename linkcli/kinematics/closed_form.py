@@ -90,11 +90,10 @@ class Solver:
         self._rates = [(g.point, self._rate_step(i, g)) for i, g in enumerate(self.groups)
                        if g.point is not None]
 
-
     # positions -------------------------------------------------------------------
     def _position(self, group, pos, q, turns=None):
         """(P, shortfall, ...) of the group's point; ``turns`` collects the discs' turns
-        (:meth:`_roll_position`), which contacts solved later read."""
+        (``turns.roll_position``), which contacts solved later read."""
         kind = group.kind
         if kind == "roll":
             return roll_position(self.mech, group, pos, q, turns), None

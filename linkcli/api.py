@@ -11,7 +11,7 @@ so the model itself never imports a solver.
 """
 from __future__ import annotations
 
-from linkcli.runs.limits import sweep_names
+from linkcli.runs.limits.names import sweep_names
 from linkcli.answers.quantities import Result
 from linkcli.runs.sheet import evaluate
 from linkcli.runs.sweep import Sweep, sweep

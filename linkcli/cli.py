@@ -51,15 +51,30 @@ SYMBOLIC_OPTION = click.option(
 NUMBERS_OPTION = click.option("--numbers", default=None, metavar="NAMES",
                               help="With --symbolic: the parameters (and g) given their "
                               "numbers, e.g. --numbers M,L.")
+SECONDS_OPTION = click.option("--seconds", type=float, default=None, metavar="S",
+                              help="With --symbolic: the processor time the formulas may "
+                              "take (default 10); those not reached are named.")
 
 
-def _symbolic_load(file, k, symbolic, numbers, designed=True, method="closed", tol=None):
-    """(model, formulas' source) of ``file``: the document is read once when the formulas
-    are asked for (standard input cannot be read twice); a design question answered (by
-    ``method``) unless ``designed`` is False."""
+def _symbolic_options(symbolic, numbers, seconds):
+    """--numbers and --seconds go with --symbolic; --seconds is a time, not negative."""
     if numbers is not None and not symbolic:
         raise InputError("--numbers goes with --symbolic", key="--numbers",
                          hint="add --symbolic, or drop --numbers")
+    if seconds is not None and not symbolic:
+        raise InputError("--seconds goes with --symbolic", key="--seconds",
+                         hint="add --symbolic, or drop --seconds")
+    if seconds is not None and not seconds >= 0:
+        raise InputError(f"--seconds must be a time of at least 0 s, got {seconds:g}",
+                         key="--seconds", hint="e.g. --seconds 30")
+
+
+def _symbolic_load(file, k, symbolic, numbers, seconds, designed=True, method="closed",
+                   tol=None):
+    """(model, formulas' source) of ``file``: the document is read once when the formulas
+    are asked for (standard input cannot be read twice); a design question answered (by
+    ``method``) unless ``designed`` is False."""
+    _symbolic_options(symbolic, numbers, seconds)
     if not symbolic:
         return _load(file, k, designed, method, tol), None
     from linkcli.input.document import build
@@ -286,7 +301,9 @@ def cli(ctx, quiet, traceback):
               help="Also print the force in every joint (Newton-Euler, with the masses).")
 @SYMBOLIC_OPTION
 @NUMBERS_OPTION
-def solve(file, k, form, decimals, lang, output, method, tol, reactions, symbolic, numbers):
+@SECONDS_OPTION
+def solve(file, k, form, decimals, lang, output, method, tol, reactions, symbolic, numbers,
+          seconds):
     """Solve FILE and print the exam's results table.
 
     \b
@@ -302,7 +319,7 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions, symboli
                          "csv", key="--format", hint="give --format json for machine-readable "
                          "formulas")
     tol = _tol(tol)
-    mech, doc = _symbolic_load(file, k, symbolic, numbers, method=method, tol=tol)
+    mech, doc = _symbolic_load(file, k, symbolic, numbers, seconds, method=method, tol=tol)
     decimals = mech.report.get("decimals", 1) if decimals is None else decimals
     from linkcli.runs.sheet import evaluate
     result = evaluate(mech, method=method, tol=tol)
@@ -312,7 +329,7 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions, symboli
         text = append_report(text, mech, form, decimals, method=method, tol=tol)
     if doc is not None:
         from linkcli.texts.symbolic import append
-        text = append(text, form, doc, k, numbers, lang)
+        text = append(text, form, doc, k, numbers, lang, seconds)
     _emit(text, output)
     for caution in result.cautions:       # after the answers: what the reader should check
         _echo(f"linkcli: {caution}", err=True)
@@ -329,7 +346,8 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions, symboli
               "or the constraint equations Newton-Raphson solves together.")
 @SYMBOLIC_OPTION
 @NUMBERS_OPTION
-def explain(file, k, pseudocode, output, method, symbolic, numbers):
+@SECONDS_OPTION
+def explain(file, k, pseudocode, output, method, symbolic, numbers, seconds):
     """Print Grübler's count, the Assur decomposition and the solving order.
 
     \b
@@ -343,7 +361,7 @@ def explain(file, k, pseudocode, output, method, symbolic, numbers):
                          key="--method", hint="drop --method newton for --pseudocode (a "
                          "class-III group is written as one call solved numerically)")
     _not_an_input(output, file)
-    mech, doc = _symbolic_load(file, k, symbolic, numbers, designed=pseudocode)
+    mech, doc = _symbolic_load(file, k, symbolic, numbers, seconds, designed=pseudocode)
     if pseudocode:
         from linkcli.texts.pseudocode import pseudocode as text
         out = text(mech)
@@ -352,7 +370,7 @@ def explain(file, k, pseudocode, output, method, symbolic, numbers):
         out = text(mech, method)
     if doc is not None:
         from linkcli.texts.symbolic import append
-        out = append(out, "exam", doc, k, numbers)
+        out = append(out, "exam", doc, k, numbers, seconds=seconds)
     _emit(out, output)
 
 
@@ -491,7 +509,7 @@ def plot(file, sweep, frf, modes, free, vary, names, k, output):
         plot_vary(mech, vary, list(names), output)
         return
     if sweep:
-        from linkcli.runs.limits import sweep_names
+        from linkcli.runs.limits.names import sweep_names
         from linkcli.pictures.plotting import plot as make
         make(mech, sweep, sweep_names(mech, list(names), key="--y"), output)
         return
@@ -708,7 +726,7 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
                              "NAME=FROM:TO:STEPS (a parameter's)", key="--from")
         mech = _load(file, k, method=method, tol=_tol(tol))
         q = sweep_mod.driver_range(start, stop, steps, step)
-        from linkcli.runs.limits import sweep_names
+        from linkcli.runs.limits.names import sweep_names
         chosen = sweep_names(mech, chosen)      # maxima, strokes ... are not functions of q
         sweep_mod.check_every(every)
         sweeper = sweep_mod.Sweeper(mech, q, chosen, method=method, tol=_tol(tol))
@@ -762,15 +780,15 @@ def limits(file, names, start, stop, form, decimals, k, output):
       linkcli limits mechanisms/polimi-crank-slider.yaml --of c --of cdot
       linkcli limits mechanisms/khurmi-15-3-max-piston-velocity.yaml --of vP --from 0 --to 180
     """
-    from linkcli.runs import limits as limits_mod
+    from linkcli.runs.limits import names as limit_names, search, table
     _not_an_input(output, file)
     mech = _load(file, k)
     decimals = mech.report.get("decimals", 1) if decimals is None else decimals
-    found = [limits_mod.find(mech, name, start, stop)
-             for name in (names or limits_mod.default_names(mech))]
-    _emit(limits_mod.render(found, form, decimals), output)
+    found = [search.find(mech, name, start, stop)
+             for name in (names or limit_names.default_names(mech))]
+    _emit(table.render(found, form, decimals), output)
     if form != "json":
-        for text in limits_mod.messages(found):
+        for text in table.messages(found):
             _echo(text, err=True, prefix="linkcli: ")
 
 
@@ -901,8 +919,9 @@ def entry():  # pragma: no cover - console script
 @click.option("--force", is_flag=True, help="Replace the output file if it exists.")
 @SYMBOLIC_OPTION
 @NUMBERS_OPTION
+@SECONDS_OPTION
 def export(file, target, k_text, lang, decimals, tolerance, no_figure, method, output, force,
-           symbolic, numbers):
+           symbolic, numbers, seconds):
     """Export FILE for a course: a Moodle quiz with every digit's variant, or a worked
     solution to hand out.
 
@@ -923,9 +942,7 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, method, o
     if (symbolic or numbers is not None) and target == "moodle":
         raise InputError("--symbolic goes with a worked solution (--to html or markdown)",
                          key="--symbolic", hint="drop --symbolic for a Moodle export")
-    if numbers is not None and not symbolic:
-        raise InputError("--numbers goes with --symbolic", key="--numbers",
-                         hint="add --symbolic, or drop --numbers")
+    _symbolic_options(symbolic, numbers, seconds)
     if target == "moodle":
         from linkcli.exports.moodle import export as make
         text = make(doc, ks, decimals=decimals, tolerance=tolerance, lang=lang,
@@ -942,6 +959,6 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, method, o
         formulas = None
         if symbolic:
             from linkcli.texts.symbolic import formulas as symbolic_formulas, parse_numbers
-            formulas = symbolic_formulas(doc, k, parse_numbers(numbers))
+            formulas = symbolic_formulas(doc, k, parse_numbers(numbers), seconds)
         text = document(doc, k, target, lang, figure=not no_figure, formulas=formulas)
     _emit(text.rstrip("\n"), output)

@@ -183,6 +183,21 @@ class ModeError(SolveError):
         self.values = tuple(values)
 
 
+class FormulaLimit(SolveError):
+    """A formula of ``--symbolic`` not written, the numeric answers standing: ``reason``
+    'terms' where its expansion passes ``limit`` terms (``size`` the terms reached), 'time'
+    where the processor time the formulas may take (``limit`` s) ran out before it
+    (``size`` the seconds spent).  ``items`` are the formulas it stops."""
+
+    def __init__(self, detail: str, *, reason: str, limit: float, size: float = 0.0,
+                 items=(), **kw):
+        super().__init__(detail, **kw)
+        self.reason = reason
+        self.limit = limit
+        self.size = size
+        self.items = tuple(items)
+
+
 @dataclass
 class Caution:
     """A result that is given, but that the reader must look at: a figure far from the

@@ -114,7 +114,7 @@ def _sweeps(linkage, q):
 
 
 def _report(linkage):
-    from linkcli.runs.limits import sweep_names
+    from linkcli.runs.limits.names import sweep_names
     from linkcli.answers.quantities import report_names
     return list(sweep_names(linkage.model, None) or report_names(linkage.model))
 

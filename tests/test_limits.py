@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 import linkcli
-from linkcli.runs import limits
+from linkcli.runs.limits import search
 from linkcli.runs.check import check_file
 from linkcli.cli import main
 from linkcli.errors import InputError, SolveError
@@ -55,7 +55,7 @@ def close(a, b, rel=REL):
 
 # --- closed forms ----------------------------------------------------------------------------
 def test_in_line_dead_centres_are_l_plus_and_minus_r():
-    found = limits.find(slider_crank().model, "xB")
+    found = search.find(slider_crank().model, "xB")
     top, bottom = found.of("maximum"), found.of("minimum")
     assert len(top) == len(bottom) == 1
     assert close(top[0].value, 400.0) and close(bottom[0].value, 200.0)
@@ -69,7 +69,7 @@ def test_in_line_dead_centres_are_l_plus_and_minus_r():
 @pytest.mark.parametrize("r, l, e", [(100.0, 300.0, 60.0), (80.0, 250.0, -90.0),
                                      (37.5, 112.0, 20.0)])
 def test_offset_slider_stroke_and_time_ratio(r, l, e):
-    found = limits.find(slider_crank(r, l, e).model, "xB")
+    found = search.find(slider_crank(r, l, e).model, "xB")
     outer, inner = math.sqrt((l + r) ** 2 - e * e), math.sqrt((l - r) ** 2 - e * e)
     # the outer dead centre: crank along O -> B; the inner: crank along B -> O
     q_out = math.degrees(math.atan2(e, outer)) % 360
@@ -115,7 +115,7 @@ report:
 
 def test_crank_rocker_limit_angles_from_the_law_of_cosines():
     a, b, c, d = 40.0, 120.0, 90.0, 110.0
-    found = limits.find(fourbar(a, b, c, d).model, "psi")
+    found = search.find(fourbar(a, b, c, d).model, "psi")
     expected = {}
     for s, kind in ((b + a, "extended"), (b - a, "folded")):
         gamma = math.acos((d * d + c * c - s * s) / (2 * d * c))     # at O4, from O4 -> O2
@@ -134,7 +134,7 @@ def test_crank_rocker_limit_angles_from_the_law_of_cosines():
 
 def test_max_piston_velocity_against_a_fine_grid_and_finite_differences():
     r, l, rate = 100.0, 350.0, 120.0          # mm, deg/s
-    found = limits.find(slider_crank(r, l, rate=rate).model, "xBdot")
+    found = search.find(slider_crank(r, l, rate=rate).model, "xBdot")
 
     def x(theta):                               # the piston's position, closed form
         return r * np.cos(theta) + np.sqrt(l * l - (r * np.sin(theta)) ** 2)
@@ -152,7 +152,7 @@ def test_max_piston_velocity_against_a_fine_grid_and_finite_differences():
     accel = (x(t + 1e-4) - 2 * x(t) + x(t - 1e-4)) / 1e-8
     assert abs(accel) <= 1e-5 * r
     # and the speed |v_B| has the same maxima, its minima 0 at the dead centres
-    speeds = limits.find(slider_crank(r, l, rate=rate).model, "vB")
+    speeds = search.find(slider_crank(r, l, rate=rate).model, "vB")
     assert sorted(round(e.q, 6) for e in speeds.of("minimum")) == [0.0, 180.0]
     assert all(close(e.value, abs(top.value)) for e in speeds.of("maximum"))
 
@@ -160,7 +160,7 @@ def test_max_piston_velocity_against_a_fine_grid_and_finite_differences():
 def test_roots_are_found_to_the_tolerance_off_the_grid():
     # an offset that puts the dead centres between grid values; the rate at them is zero
     link = slider_crank(100.0, 300.0, 37.0)
-    found = limits.find(link.model, "xB")
+    found = search.find(link.model, "xB")
     for e in found.extremes:
         rates = link.solve(q=[e.q - 2e-10, e.q + 2e-10], names=["xBdot"])
         low, high = rates.values["xBdot"]
@@ -196,7 +196,7 @@ def test_named_limits_print_in_the_files_units_at_every_driver_value():
     assert result.units["travel"] == "mm" and result.units["where"] == "deg"
     assert result.units["ratio"] == "" and result.units["t_work"] == "s"
     assert np.shape(result.values["ratio"]) == (3,)
-    found = limits.find(model, "xB")
+    found = search.find(model, "xB")
     assert np.allclose(result.values["t_work"] + result.values["t_back"], 6.0, rtol=REL)
     assert np.allclose(result.values["ratio"], found.time_ratio, rtol=REL)
     assert result.values["vB"][0] < result.values["vmax"][0]
@@ -226,13 +226,13 @@ def test_constant_and_monotonic_quantities_have_no_extreme():
     """A constant quantity (to rounding) has its constant as maximum and minimum, stroke 0,
     and no extreme at any position; a monotonic one has none."""
     model = slider_crank().model
-    flat = limits.find(model, "yB")
+    flat = search.find(model, "yB")
     assert not flat.extremes and flat.constant == 0.0 and flat.stroke == 0.0
     speed = 100.0 * math.radians(60.0)              # the crank pin's speed r qdot, mm/s
     for name, value in (("vA", speed), ("yBdot", 0.0)):
-        still = limits.find(model, name)
+        still = search.find(model, name)
         assert not still.extremes and still.constant == pytest.approx(value, rel=1e-12), name
-    turning = limits.find(model, "phi")
+    turning = search.find(model, "phi")
     assert not turning.extremes and "keeps its sign" in turning.why and "rises" in turning.why
 
 
@@ -257,7 +257,7 @@ def test_a_rocker_driver_is_limited_to_where_it_assembles():
     link = fourbar(driver="[O4, B]", value=100.0,
                    extra="  ratio: {time_ratio: xA}\n  top: {maximum: xA}\n"
                    "  flat: {maximum: theta}")
-    found = limits.find(link.model, "xA")
+    found = search.find(link.model, "xA")
     assert not found.whole and any("cannot assemble" in n for n in found.notes)
     assert [e.kind for e in found.extremes] == ["minimum", "maximum"]
     assert close(found.of("minimum")[0].value, -40.0) and close(found.stroke, 80.0)
@@ -322,7 +322,7 @@ def test_ranges_and_names_on_the_command_line(capsys):
 def test_a_length_driver_needs_a_range():
     model = linkcli.load(os.path.join(ROOT, "mechanisms", "padova-2020-07.yaml")).model
     with pytest.raises(InputError, match="the driver is a length, which has no natural range"):
-        limits.find(model, "phi3")
+        search.find(model, "phi3")
 
 
 # --- constant up to rounding, dwells and toggles inside the range ---------------------------
@@ -405,10 +405,10 @@ def test_limits_over_a_toggle_inside_the_range(capsys):
     assert found["xC"]["extremes"] == [{"kind": "maximum", "q": 0.0, "value": 100.0,
                                         "span": None}]
     assert found["xCdot"]["extremes"] == []
-    dwell = limits.find(linkcli.load(path).model, "xC", 0.05, 359.95)
+    dwell = search.find(linkcli.load(path).model, "xC", 0.05, 359.95)
     assert [e.kind for e in dwell.extremes] == ["minimum"]
     (held,) = dwell.extremes
-    step = (359.95 - 0.05) / limits.GRID
+    step = (359.95 - 0.05) / search.GRID
     assert held.value == 0.0 and abs(held.span[0] - 90) < step and abs(held.span[1] - 270) < step
     link = linkcli.loads(open(path).read().replace(
         "report:", "quantities:\n  low: {at_minimum: xC, from: 0.05, to: 359.95}\nreport:"))
@@ -423,7 +423,7 @@ def test_a_run_across_the_turns_end_is_described_to_its_end():
     through 360 to the toggle at 90 deg (no extreme: it jumps at the toggles).  The reason
     stopped at 360 deg, at 0 mm/s, as if the rate fell to 0 only."""
     path = os.path.join(ROOT, "docs", "examples", "toggle.yaml")
-    found = limits.find(linkcli.load(path).model, "xCdot", None, None)
+    found = search.find(linkcli.load(path).model, "xCdot", None, None)
     assert not found.extremes
     match = re.search(r"it falls from (\S+) to (\S+) mm/s \(by \S+\) as q goes from (\S+) to "
                       r"(\S+) \(through 360\) deg", found.why)

@@ -178,60 +178,15 @@ def test_crank_slider_closure_is_the_seeds():
     assert found.values[gamma] == 0
 
 
-def _measured(meaning, kin):
-    """(value, rate, acceleration) of what a closure symbol measures, from the solver."""
-    pos, vel, acc = kin.pos, kin.vel, kin.acc
-
-    def at(d, p):
-        return complex(np.ravel(d.get(p, 0.0))[0])
-    if meaning[0] == "angle":
-        _, a, b = meaning
-        z, v, w = (at(d, b) - at(d, a) for d in (pos, vel, acc))
-        rate = v / z
-        return np.angle(z), rate.imag, (w / z - rate ** 2).imag
-    if meaning[0] == "length":
-        _, a, b = meaning
-        z, v, w = (at(d, b) - at(d, a) for d in (pos, vel, acc))
-        r = abs(z)
-        rate = (v * z.conjugate()).real / r
-        return r, rate, ((w * z.conjugate()).real + abs(v) ** 2 - rate ** 2) / r
-    _, p, g, gamma = meaning
-    turn = np.exp(-1j * float(gamma))
-    return (((at(pos, p) - complex(g)) * turn).real, (at(vel, p) * turn).real,
-            (at(acc, p) * turn).real)
-
-
 @pytest.mark.parametrize("name", ["polimi-crank-slider.yaml", "khurmi-7-1-fourbar.yaml",
                                   "padova-2020-07.yaml", "padova-2020-02.yaml"])
 def test_closures_hold_for_the_solved_motion(name):
     """At the file's driver value, the solver's positions, velocities and accelerations
-    satisfy every closure and its two rate systems (1e-9 of the terms' size)."""
-    found, reading = closures_of(name)
+    satisfy every closure and its two rate systems (1e-9 of the terms' size; every shipped
+    linkage in tests/test_roundtrip_symbolic.py)."""
+    from test_roundtrip_symbolic import check_linkage, closures_of as loop_of
     mech = linkcli.load(os.path.join(MECHANISMS, name)).model
-    solver = solver_for(mech)
-    d = mech.driver
-    kin = solver.positions(d.value)
-    solver.velocities(kin, d.rate)
-    solver.accelerations(kin, d.accel)
-    values = dict(reading.values())
-    values.update({k: float(v) for k, v in found.values.items()})
-    for symbol, meaning in found.meaning.items():
-        x, v, a = _measured(meaning, kin)
-        values.update({symbol: x, sp.Symbol(f"{symbol.name}_dot", real=True): v,
-                       sp.Symbol(f"{symbol.name}_ddot", real=True): a})
-    checked = 0
-    for c in found.closures:
-        if c.matrix is None:
-            continue
-        scale = max(abs(complex(sp.N(c.left.xreplace(values)))), 1e-3)
-        assert abs(complex(sp.N((c.left - c.right).xreplace(values)))) < 1e-9 * scale, c.text
-        for order, rhs in ((1, c.velocity), (2, c.acceleration)):
-            u = sp.Matrix([sp.Symbol(f"{x.name}_{'d' * order}ot", real=True) for x in c.unknowns])
-            residual = numeric(c.matrix * u - rhs, values)
-            size = np.max(np.abs(numeric(rhs, values))) + 1e-12
-            assert np.max(np.abs(residual)) < 1e-9 * max(size, 1.0), (c.text, order, residual)
-        checked += 1
-    assert checked >= 1
+    assert check_linkage(mech, loop_of(os.path.join("mechanisms", name))) >= 1
 
 
 # --- formats ---------------------------------------------------------------------------------

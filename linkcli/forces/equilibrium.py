@@ -27,6 +27,9 @@ equilibrium, from the linear system sum_s N_s s_i = Q_i (other loads) (each
 spring's Q_i is -N s_i).  Its rank is decided on the columns s_i divided by the
 speed of each spring's ends (its lever): a spring whose length changes by less
 than RIGID of its ends' motion (both ends on one body) cannot hold a load.
+
+Its twin in formulas is ``forces.symbolic`` (``Lagrangian.equilibrium``: the figure, the
+root of a linear Q = 0, else this numeric equilibrium stated as the symbols q_e).
 """
 from __future__ import annotations
 

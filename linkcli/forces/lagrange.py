@@ -32,6 +32,10 @@ deg.  A rolling disc turns by theta = -s (x_C - x_C,figure) / R (x_C its centre
 along the floor's direction u, s its side), 0 in the figure.  A torque (constant
 or harmonic) on a disc's slider acts on the spinning disc (the block slides on a
 fixed guide and cannot take it); a torsional element names the disc or the block.
+
+Its twin in formulas is ``forces.symbolic``: the same terms from the same model, T, V and D
+written in the parameters (``--symbolic``); ``tests/test_roundtrip_symbolic.py`` puts the
+numbers into those formulas and finds these matrices.
 """
 from __future__ import annotations
 

@@ -20,6 +20,9 @@ With M, K, R the matrices of the free coordinates about the equilibrium (forces.
   the extremes of y(t) (roots of y'(t) = c . v(t) between samples of the motion, by Brent's
   method) until the envelope sum_k |r_k| e^{Re s_k t} of the modal expansion (or the energy
   bound |y| <= sqrt(2 E c^T K^-1 c)) falls below the largest found.
+
+The characteristic polynomial's twin in formulas is ``forces.symbolic.characteristic``
+(det(K - omega^2 M) expanded by minors in the parameters).
 """
 from __future__ import annotations
 

@@ -25,6 +25,10 @@ imposed coordinates,
 
 the stability conditions are the leading principal minors of K (all > 0), and the
 natural frequencies the roots of det(K - omega^2 M) = 0, a polynomial in omega^2.
+
+The numeric twins: ``forces.lagrange`` (T, V, D, M, K, R), ``forces.equilibrium`` (q_e),
+``forces.vibration`` (the linearisation, F) and ``forces.oscillation`` (the characteristic
+polynomial).
 """
 from __future__ import annotations
 
@@ -32,7 +36,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
-from linkcli.errors import SolveError
+from linkcli.errors import FormulaLimit, SolveError
 from linkcli.kinematics.symbolic import Positions, Symbols, dot, length, sub
 from linkcli.model import elements as el
 
@@ -46,6 +50,13 @@ SHORT = 160
 MANY = 16
 #: a formula with roots of at most this many operations is simplified whole
 BRIEF = 40
+#: a formula of more operations is written as it is built: simplifying it costs more than
+#: its length, and no exam prints one so long
+LONG = 400
+#: the characteristic polynomial is not written where a minor of det(K - omega^2 M) passes
+#: this many terms (an exam's has tens), or where written out it has more operations
+TERMS = 2000
+OPERATIONS = 5000
 
 
 @dataclass
@@ -75,10 +86,12 @@ class Linear:
 class Lagrangian:
     """T, V, D and the generalised harmonic forces of ``s.mech`` as formulas."""
 
-    def __init__(self, s: Symbols):
+    def __init__(self, s: Symbols, check=None):
         self.s = s
         self.mech = s.mech
-        self.positions = Positions(s)
+        #: called between steps; raises where the formulas' time has run out
+        self.check = check if check is not None else (lambda: None)
+        self.positions = Positions(s, self.check)
         self.elements = self.mech.elements or el.Elements()
         self.dyn = self.mech.dynamics
         imposed = set(self.elements.imposed)
@@ -136,6 +149,7 @@ class Lagrangian:
         n = len(self.s.q)
         M = sp.zeros(n, n)
         for _, m, J, G, theta in self.masses():
+            self.check()
             Gx, Gy = self.gradient(G[0]), self.gradient(G[1])
             spin = self.gradient(theta) if theta is not None and J != 0 else None
             for i in range(n):
@@ -145,6 +159,7 @@ class Lagrangian:
                         M[i, j] += J * spin[i] * spin[j]
         for i in range(n):
             for j in range(i, n):
+                self.check()
                 M[i, j] = M[j, i] = tidy(M[i, j])
         self.Mq = M
         return quadratic(M, self.s.qd)
@@ -184,6 +199,7 @@ class Lagrangian:
         R = sp.zeros(n, n)
         D = sp.Integer(0)
         for damper in self.elements.dampers.values():
+            self.check()
             grad = [tidy(x) for x in self.gradient(self.measure(damper.measure))]
             c = self.s.num(damper.coefficient)
             D += c * sum((g * qd for g, qd in zip(grad, self.s.qd)), sp.Integer(0)) ** 2 / 2
@@ -208,6 +224,7 @@ class Lagrangian:
         V = sum(terms, sp.Integer(0))
         springs = {}
         for spring in self.elements.springs.values():
+            self.check()
             measure = self.measure(spring.measure)
             k = s.num(spring.stiffness)
             figure = s.at_figure(measure)
@@ -229,6 +246,7 @@ class Lagrangian:
                 self.preloads[n] = forces[n]
         terms = [tidy(t) for t in terms]
         for name, (_, measure, k, free) in springs.items():
+            self.check()
             self.free_measures[name] = free
             terms.append(k * tidy(measure - free) ** 2 / 2)
         self.gradV = [sum((tidy(sp.diff(t, q)) for t in terms), sp.Integer(0)) for q in self.s.q]
@@ -320,6 +338,7 @@ class Lagrangian:
             e = sum((M[i, j] * s.qdd[j] for j in range(n)), sp.Integer(0))
             for j in range(n):
                 for k in range(n):
+                    self.check()
                     c = tidy(sp.diff(M[i, j], s.q[k]) - sp.diff(M[j, k], s.q[i]) / 2)
                     e += c * s.qd[j] * s.qd[k]
             e += sum((R[i, j] * s.qd[j] for j in range(n)), sp.Integer(0)) + self.gradV[i]
@@ -359,55 +378,147 @@ class Lagrangian:
             stated[symbol] = float(numeric[i])
         return Equilibrium(values, "numeric", stated, dict(self.preloads))
 
-    def linear(self, eq: Equilibrium) -> Linear:
-        s = self.s
-        at = eq.values
-        free, imposed = self.free, self.imposed
-
-        def block(A, rows, cols):
-            return sp.Matrix(len(rows), len(cols),
-                             lambda a, b: tidy(A[rows[a], cols[b]].xreplace(at)))
-
+    def matrices(self, eq: Equilibrium) -> tuple:
+        """(M, K, R) of the free coordinates at q_e; K = d2V/dq dq is kept whole (the
+        imposed coordinates' columns enter F)."""
+        s, at, free = self.s, eq.values, self.free
         n = len(s.q)
         hessian = sp.zeros(n, n)
         for i in range(n):
             for j in range(i, n):
+                self.check()
                 hessian[i, j] = hessian[j, i] = sp.diff(self.gradV[i], s.q[j])
-        M, K, R = (block(A, free, free) for A in (self.Mq, hessian, self.Rq))
+        self.hessian = hessian
+        return tuple(self._block(A, free, free, at) for A in (self.Mq, hessian, self.Rq))
+
+    def _block(self, A, rows, cols, at):
+        out = sp.zeros(len(rows), len(cols))
+        for a in range(len(rows)):
+            for b in range(len(cols)):
+                self.check()
+                out[a, b] = tidy(A[rows[a], cols[b]].xreplace(at))
+        return out
+
+    def load(self, eq: Equilibrium) -> list:
+        """{F} = f_f - (K_fs - Omega^2 M_fs + i Omega R_fs) S at q_e (after ``matrices``)."""
+        at, free, imposed = eq.values, self.free, self.imposed
         f = [tidy(x.xreplace(at)) for x in self.forcing()]
         F = [f[i] for i in free]
-        if imposed:
-            omega = self.frequency() or sp.Integer(0)
-            S = self.supports()
-            Ks, Ms, Rs = (block(A, free, imposed) for A in (hessian, self.Mq, self.Rq))
-            coupling = Ks - omega ** 2 * Ms + sp.I * omega * Rs
-            F = [tidy(F[a] - sum((coupling[a, b] * S[b] for b in range(len(imposed))),
-                                 sp.Integer(0))) for a in range(len(free))]
-        stability = [minor(K[:n, :n]) for n in range(1, len(free) + 1)]
-        w2 = sp.Symbol("w2")
-        characteristic = sp.expand((K - w2 * M).det())
-        written = sum((tidy(c) * OMEGA ** (2 * p) for (p,), c in
-                       sp.Poly(characteristic, w2).terms()), sp.Integer(0))
-        return Linear([s.q[i].name for i in free], M, K, R, F, stability, written,
-                      roots(characteristic, w2))
+        if not imposed:
+            return F
+        omega = self.frequency() or sp.Integer(0)
+        S = self.supports()
+        Ks, Ms, Rs = (self._block(A, free, imposed, at) for A in (self.hessian, self.Mq,
+                                                                  self.Rq))
+        coupling = Ks - omega ** 2 * Ms + sp.I * omega * Rs
+        return [tidy(F[a] - sum((coupling[a, b] * S[b] for b in range(len(imposed))),
+                                sp.Integer(0))) for a in range(len(free))]
+
+    def linear(self, eq: Equilibrium) -> Linear:
+        """Every formula of the linearised system at once (``matrices``, ``load``,
+        ``stability``, ``characteristic``)."""
+        M, K, R = self.matrices(eq)
+        F = self.load(eq)
+        written, found = characteristic(K, M, self.check)
+        return Linear([self.s.q[i].name for i in self.free], M, K, R, F, stability(K), written,
+                      found)
 
 
-def roots(polynomial, x):
-    """The roots of a polynomial of degree 1 or 2 in ``x`` (omega^2), where each is at most
-    SHORT characters; None otherwise (a cubic's roots are not what an exam prints)."""
-    poly = sp.Poly(polynomial, x)
-    if poly.degree() == 1:
-        a, b = poly.all_coeffs()
-        found = [tidy(-b / a)]
-    elif poly.degree() == 2:
-        a, b, c = poly.all_coeffs()
+def stability(K) -> list:
+    """The leading principal minors of K, each written out (``minor``)."""
+    return [minor(K[:n, :n]) for n in range(1, K.shape[0] + 1)]
+
+
+def characteristic(K, M, check=None) -> tuple:
+    """(det(K - omega^2 M) as a polynomial in omega^2, each coefficient tidied, its roots where
+    short or None); ``forces.oscillation.characteristic`` is the numeric twin.  The
+    determinant is expanded by minors in a ring of polynomials (:func:`determinant`), never
+    simplified whole: the cost is that of the products.  FormulaLimit (reason 'terms') where
+    it passes TERMS terms, or OPERATIONS operations once its generators are written out."""
+    w2 = sp.Symbol("w2")
+    det, ring = determinant(K - w2 * M, check)
+    size = _operations(det, ring)
+    if size > OPERATIONS:
+        raise FormulaLimit(f"the characteristic polynomial is not written: it has {size} "
+                           f"operations (at most {OPERATIONS} are written)", reason="terms",
+                           limit=OPERATIONS, size=size, items=("characteristic",))
+    coefficients = _powers_of(det, ring, w2)
+    written = sum(((tidy(c) if sp.count_ops(c) <= LONG else c) * OMEGA ** (2 * p)
+                   for p, c in coefficients.items()), sp.Integer(0))
+    return written, roots(coefficients)
+
+
+def _operations(poly, ring) -> int:
+    """The operations of a ring polynomial written out: per term, one per factor and those
+    of each generator (a root or a quotient is as long as its formula)."""
+    cost = [1 + sp.count_ops(g) for g in ring.symbols]
+    return sum(1 + sum(e * c for e, c in zip(monom, cost)) for monom in poly.keys())
+
+
+def _powers_of(poly, ring, x) -> dict:
+    """{p: coefficient of x^p} of a ring polynomial, as formulas."""
+    gens = list(ring.symbols)
+    i = gens.index(x) if x in gens else None
+    parts = {}
+    for monom, c in poly.terms():
+        p = monom[i] if i is not None else 0
+        rest = monom[:i] + (0,) + monom[i + 1:] if i is not None else monom
+        parts.setdefault(p, []).append((rest, c))
+    return {p: ring.to_sympy(ring.ring.from_dict(dict(terms))) for p, terms in sorted(parts.items())}
+
+
+def determinant(A, check=None) -> tuple:
+    """(det A, its ring) of a square matrix of formulas, expanded: its entries read as
+    polynomials in their symbols and in the functions, roots and reciprocals they hold
+    (sympy's generators), and
+
+        det A = sum_j (-1)^j A_{k,j} det A[rows < k, columns S minus j]
+
+    the minors of the first k rows on each set S of k columns computed once (sum_k C(n, k) k
+    products of polynomials, no division, no simplification).  FormulaLimit (reason 'terms')
+    where a minor passes TERMS terms; ``check`` is called before each product."""
+    n = A.shape[0]
+    polys, info = sp.parallel_poly_from_expr(list(A) or [sp.Integer(1)], expand=True)
+    ring = info["domain"].poly_ring(*info["gens"])
+    rows = [[ring(dict(p.as_dict())) for p in polys[i * n:(i + 1) * n]] for i in range(n)]
+    minors = {(): ring.one}
+    for k in range(n):
+        found = {}
+        for columns, below in minors.items():
+            for j in range(n):
+                if j in columns or not rows[k][j]:
+                    continue
+                if check is not None:
+                    check()
+                key = tuple(sorted(columns + (j,)))
+                sign = -1 if sum(1 for c in columns if c > j) % 2 else 1
+                term = rows[k][j] * below
+                found[key] = found.get(key, ring.zero) + (term if sign > 0 else -term)
+                if len(found[key]) > TERMS:
+                    raise FormulaLimit(
+                        f"the characteristic polynomial is not written: its expansion passes "
+                        f"{TERMS} terms (a minor of {k + 1} rows)", reason="terms",
+                        limit=TERMS, size=len(found[key]), items=("characteristic",))
+        minors = found
+    return minors.get(tuple(range(n)), ring.zero), ring
+
+
+def roots(coefficients) -> list | None:
+    """The roots omega^2 of the characteristic polynomial ``coefficients`` ({power: formula})
+    of degree 1 or 2, where each is at most SHORT characters; None otherwise (a cubic's roots
+    are not what an exam prints, nor those of coefficients longer than SHORT operations)."""
+    degree = max(coefficients, default=0)
+    if degree not in (1, 2) or any(sp.count_ops(c) > SHORT for c in coefficients.values()):
+        return None
+    a, b, c = (coefficients.get(p, sp.Integer(0)) for p in (2, 1, 0))
+    if degree == 1:
+        found = [tidy(-c / b)]
+    else:
         discriminant = sp.expand(b ** 2 - 4 * a * c)
         if len(str(discriminant)) > 4 * SHORT:      # no short root will come of it
             return None
         root = sp.sqrt(shortest(discriminant))
         found = [sp.factor_terms(sp.together((-b + sign * root) / (2 * a))) for sign in (-1, 1)]
-    else:
-        return None
     return found if all(len(str(r)) <= SHORT for r in found) else None
 
 
@@ -432,7 +543,7 @@ def tidy(expr):
     """A formula as the exam writes it: a polynomial in the parameters expanded (sums of
     products), anything with functions or roots simplified."""
     expr = sp.sympify(expr)
-    if expr.has(sp.Float):
+    if expr.has(sp.Float) or sp.count_ops(expr) > LONG:
         return expr
     if expr.is_number:
         return sp.nsimplify(expr)

@@ -5,6 +5,9 @@ Every problem found is collected with its YAML path and line, so that
 batch as one :class:`InputErrors`.  The sections are read by one parser
 assembled from a reader per concern: bodies, driver and loads, report and keys; the
 ``dynamics:`` section last, on the mechanism the others built.
+
+With a ``Symbolic`` reading (``input.symbols``, its twin for ``--symbolic``) the same
+readers build the model with every parameter an exact number that carries its formula.
 """
 from __future__ import annotations
 

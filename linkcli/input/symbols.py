@@ -16,6 +16,9 @@ kind; its SI symbol is then the parameter's value in SI: ``l: 800`` under
 replaced by l / (1/1000) everywhere (``si``).  A parameter read as two kinds
 with different factors, or never read alone, keeps the file's value as its symbol's
 (``unit`` None).
+
+The numeric twins: ``input.document.build`` reads the same file with plain numbers, and
+``model.units`` holds the decimal factors these are the exact ones of.
 """
 from __future__ import annotations
 

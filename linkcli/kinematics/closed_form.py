@@ -16,6 +16,10 @@ x + i y in SI units, angles counter-clockwise from +x):
 Each group gives its shortfall (m: > 0 where it cannot close, inf where its lines are
 parallel, ``refusals``) and, for a dyad, where it is a toggle within rounding (``flat``).
 The velocities and accelerations follow along the same order (``rates``).
+
+Its twin in formulas is ``kinematics.symbolic``: the same groups in the same order, each
+point a formula of the coordinates and the parameters, and a linkage's closure equations
+with their rate systems.
 """
 from __future__ import annotations
 

@@ -1,9 +1,10 @@
 """Positions the solver refuses: a group that cannot close, a rate system that is singular.
 
 A group's shortfall (m) is > 0 where its constraints cannot meet (by how far they miss
-each other), 0 or below where they close, and inf where two lines are parallel.  A rate system's conditioning ``measure`` = |det| / (|G_1| |G_2|), the
-sine of the angle between its constraint normals, is below SINGULAR (dimensionless) at a
-toggle or dead point, where the velocities are undefined.  The errors name the group, the
+each other), 0 or below where they close, and inf where two lines are parallel.  A rate
+system's conditioning ``measure`` = |det| / (|G_1| |G_2|), the sine of the angle between
+its constraint normals, is below SINGULAR (dimensionless) at a toggle or dead point, where
+the velocities are undefined.  The errors name the group, the
 driver values (in the file's display unit) and the shortfall or the conditioning.
 """
 from __future__ import annotations

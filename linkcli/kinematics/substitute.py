@@ -44,26 +44,15 @@ HALVINGS = 12
 def substitute_solver(mech):
     """The solver of ``mech`` through substitute coordinates, or None when the coordinates the
     decomposition leaves are not link angles or no substitute places them."""
-    try:
-        pending = partial(mech).pending
-    except SolveError:
-        return None
-    if not pending or any(c.kind != "angle" for c in pending):
-        return None
-    replaced = [j for j, c in enumerate(mech.coordinates) if c in pending]
     charts = []
-    for combo in itertools.islice(itertools.combinations(_candidates(mech), len(replaced)),
-                                  TRIES):
-        coords = list(mech.coordinates)
-        for j, c in zip(replaced, combo):
-            coords[j] = c
+    for inner, replaced in substitutes(mech):
         try:
-            charts.append(Chart(mech, Solver(dataclasses.replace(
-                mech, coordinates=tuple(coords), driver=coords[0])), replaced))
+            charts.append(Chart(mech, Solver(inner), replaced))
         except SolveError:
             continue
     if not charts:
         return None
+    replaced = charts[0].replaced
     solver = SubstituteSolver(mech, charts, replaced)
     if solver.figure_measure > SINGULAR:
         return solver
@@ -76,6 +65,26 @@ def substitute_solver(mech):
                         file=mech.file, measure=solver.figure_measure,
                         hint="choose as coordinate the angle of a link that turns (a crank or a "
                         "rocker)")
+
+
+def substitutes(mech):
+    """(the mechanism with substitute coordinates, the indices of the file's coordinates they
+    replace) for each set of substitutes, at most TRIES; none where the decomposition places
+    every coordinate or leaves one that is not a link's angle.  The formulas of
+    ``kinematics.symbolic`` take the first set the decomposition places."""
+    try:
+        pending = partial(mech).pending
+    except SolveError:
+        return
+    if not pending or any(c.kind != "angle" for c in pending):
+        return
+    replaced = [j for j, c in enumerate(mech.coordinates) if c in pending]
+    for combo in itertools.islice(itertools.combinations(_candidates(mech), len(replaced)),
+                                  TRIES):
+        coords = list(mech.coordinates)
+        for j, c in zip(replaced, combo):
+            coords[j] = c
+        yield dataclasses.replace(mech, coordinates=tuple(coords), driver=coords[0]), replaced
 
 
 def _candidates(mech) -> list:

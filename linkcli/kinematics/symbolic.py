@@ -1,7 +1,7 @@
 """Positions of the points as formulas of the coordinates, along the solving order.
 
-The groups are the topology's: ``analyse`` of the model read with ``--symbolic``,
-whose numbers carry their formulas (``model.exact``), taken in the order the numeric
+The groups are the Assur decomposition's: ``assur.analyse`` of the model read with
+``--symbolic``, whose numbers carry their formulas (``model.exact``), taken in the order the numeric
 solver takes them.  Each gives its point as a formula of the coordinates q and of
 the file's parameters, as the closed-form solver computes it:
 
@@ -23,6 +23,11 @@ closure equations in complex form are ``texts.symbolic``'s.
 Points are pairs (x, y) of sympy expressions; angles of vectors are found as
 rho (cos phi, sin phi) with rho free of the coordinates when the vector is one
 (:func:`angle`), else atan2(y, x).
+
+The numeric twin is ``kinematics.closed_form`` (positions along the same groups,
+``kinematics.rates`` their rates; ``kinematics.jacobian`` for bodies' angles and points),
+and ``kinematics.substitute`` for a coordinate the groups do not place (its closures are
+written with the substitute).
 """
 from __future__ import annotations
 
@@ -32,7 +37,7 @@ import sympy as sp
 
 from linkcli.errors import SolveError
 from linkcli.kinematics.contacts import Along, Carried, Track, Turn
-from linkcli.kinematics.assur import analyse
+from linkcli.kinematics.assur import analyse, partial
 from linkcli.kinematics.groups import Dist, Line
 from linkcli.model import exact
 
@@ -43,6 +48,36 @@ class NoClosedForm(SolveError):
     def __init__(self, detail, *, group=None, **kw):
         super().__init__(detail, **kw)
         self.group = group
+
+
+def placed(mech):
+    """The solving order of ``mech`` (``assur.analyse``); NoClosedForm where the
+    decomposition leaves a coordinate it does not place (a coupler's angle: the numeric
+    solver reaches it through substitute coordinates, ``kinematics.substitute``, by Newton's
+    method), since the points are then roots of closure equations in it."""
+    pending = partial(mech).pending
+    if pending:
+        names = ", ".join(f"{c.name} (the angle of {c.a}->{c.b})" if c.kind == "angle" else
+                          c.name for c in pending)
+        raise NoClosedForm(f"{names} places no point in the solving order (a coupler's "
+                           "angle): the points are roots of the closure equations in it, with "
+                           "no closed form in the parameters", file=mech.file,
+                           hint="the closure equations and the numeric answers are given")
+    return analyse(mech)
+
+
+def placing(mech):
+    """``mech`` with the coordinates its decomposition does not place replaced by the first
+    substitutes that it does (``kinematics.substitute``), for the closure equations; ``mech``
+    itself where it places them all or no substitute does."""
+    from linkcli.kinematics.substitute import substitutes
+    for inner, _ in substitutes(mech):
+        try:
+            analyse(inner)
+        except SolveError:
+            continue
+        return inner
+    return mech
 
 
 @dataclass
@@ -83,6 +118,14 @@ class Symbols:
     def value(self, expr) -> complex:
         """The number of ``expr`` at the parameters' values and the figure."""
         return complex(sp.N(self.at_figure(expr).xreplace(self.values), 17))
+
+
+def on_line(b, c, value, axis, q) -> tuple:
+    """P with x_P = q (``axis`` 'x', else y_P = q) on the guide cross(C - B, P - B) = value."""
+    d = sub(c, b)
+    if axis == "x":
+        return (q, b[1] + (value + d[1] * (q - b[0])) / d[0])
+    return (b[0] + (d[0] * (q - b[1]) - value) / d[1], q)
 
 
 def add(a, b):
@@ -173,14 +216,16 @@ def _zero(expr) -> bool:
 class Positions:
     """Every point of the mechanism as formulas of the coordinates, group by group."""
 
-    def __init__(self, s: Symbols):
+    def __init__(self, s: Symbols, check=None):
         self.s = s
         mech = s.mech
         self.mech = mech
-        self.groups = analyse(mech).groups
+        self.groups = placed(mech).groups
         self.pos = {name: s.point(z) for name, z in mech.fixed.items()}
         self._angles = {}
         for group in self.groups:
+            if check is not None:
+                check()
             if group.point is not None:
                 self.pos[group.point] = self._position(group)
 
@@ -212,13 +257,7 @@ class Positions:
                            hint="the closure equations and the numeric answers are given")
 
     def _on_line(self, line, coord, q):
-        """P with x_P = q (or y_P = q) and cross(C - B, P - B) = c."""
-        b, c = self.pos[line.b], self.pos[line.c]
-        d = sub(c, b)
-        value = self.s.num(line.value)
-        if coord.axis == "x":
-            return (q, b[1] + (value + d[1] * (q - b[0])) / d[0])
-        return (b[0] + (d[0] * (q - b[1]) - value) / d[1], q)
+        return on_line(self.pos[line.b], self.pos[line.c], self.s.num(line.value), coord.axis, q)
 
     def _linear(self, c, p) -> bool:
         """Whether constraint ``c`` is a line in ``p`` whose other points are placed: a guide
@@ -381,9 +420,10 @@ class Closures:
     [[cos gamma, b sin beta], [sin gamma, -b cos beta]] [c', beta']^T = ...
     """
 
-    def __init__(self, s: Symbols):
+    def __init__(self, s: Symbols, check=None, write=True):
         self.s = s
-        self.mech = s.mech
+        self.mech = placing(s.mech)
+        self.named = s.mech.coordinates     # the file's, which name the angles they measure
         self.groups = analyse(self.mech).groups
         self.pos = {n: self._fixed(z) for n, z in self.mech.fixed.items()}
         self.varying = []          # symbols that move: the driver's, then each unknown
@@ -393,7 +433,17 @@ class Closures:
         guides = [b for b in self.mech.bodies.values() if b.kind == "block"
                   and b.guide.carrier == "frame"]
         self.one_guide = len({(g.guide.b, g.guide.c) for g in guides}) == 1
-        self.closures = [self._group(g) for g in self.groups]
+        self.closures = []
+        if write:
+            self.write(check)
+
+    def write(self, check=None):
+        """Each group's closure, appended to ``closures`` as it is written; ``check`` is
+        called before each."""
+        for g in self.groups[len(self.closures):]:
+            if check is not None:
+                check()
+            self.closures.append(self._group(g))
 
     def _fixed(self, z):
         x, y = self.s.point(z)
@@ -415,9 +465,9 @@ class Closures:
         return symbol, sign
 
     def _named_angle(self, a, b):
-        for c in self.mech.coordinates:
+        for c in self.named:
             if c.kind == "angle" and (c.a, c.b) in ((a, b), (b, a)) and len(
-                    self.mech.coordinates) + (self.mech.elements is not None) > 1:
+                    self.named) + (self.mech.elements is not None) > 1:
                 return sp.Symbol(c.name, real=True), 1 if (c.a, c.b) == (a, b) else -1
         for q in self._quantities():
             if q.kind == "angle" and (q.a, q.b) == (a, b):
@@ -462,6 +512,10 @@ class Closures:
             pivot, length, reverse = group.constraints
             crank = group.bodies[0]
             d = self.mech.coordinates[group.coord]
+            if d not in self.named:
+                text += " (in place of " + ", ".join(
+                    c.name for c in self.named if c not in self.mech.coordinates) + \
+                    ", which places no point)"
             q, sign = self._angle_symbol(d.a, d.b)
             L = self._length(crank, d.a, d.b)
             other = d.b if pivot == d.a else d.a
@@ -469,6 +523,8 @@ class Closures:
             self.pos[other] = self.pos[pivot] + (step if pivot == d.a else -step)
             self.varying.append(q)
             return Closure(text, self.pos[other], None, point=other)
+        if kind == "driver-coord":
+            return self._slider_driver(group, text)
         if kind == "place":
             k, m, n, w = group.place
             if not {k, m, n} <= set(self.pos):
@@ -484,6 +540,19 @@ class Closures:
             return self._slotted(group, text)
         return Closure(text, missing="no closure equation is written for this group "
                        f"({kind}): see its numbers in the worked solution")
+
+    def _slider_driver(self, group, text) -> Closure:
+        """A slider's point set by its x (or y), the coordinate q, on its fixed guide:
+        P = x + i y with the other of x, y from the guide's line (``on_line``)."""
+        line, coord = group.constraints
+        d = self.mech.coordinates[coord.coord]
+        q = sp.Symbol(d.name, real=True)
+        self.meaning[q] = ("coordinate", coord.p, coord.axis)
+        self.varying.append(q)
+        b, c = (exact.parts(self.pos[x]) for x in (line.b, line.c))
+        x, y = on_line(b, c, self.s.num(line.value), coord.axis, q)
+        self.pos[group.point] = x + sp.I * y
+        return Closure(text, self.pos[group.point], None, point=group.point)
 
     def _arm(self, dist):
         """(vector A -> P as length e^{i angle}, the angle symbol) of a Dist constraint."""
@@ -522,6 +591,9 @@ class Closures:
             return self._close(text, self.pos[act.b] - self.pos[act.a], d * sp.exp(sp.I * theta),
                                [d, theta], None)
         c1, c2 = group.constraints
+        if not all(isinstance(c, (Dist, Line)) for c in (c1, c2)):
+            return Closure(text, missing="a contact's relation (a cord, a rolling disc) places "
+                           "it: its closure is not written (see its numbers)")
         if kind == "RRR":
             (v1, t1), (v2, t2) = self._arm(c1), self._arm(c2)
             left, right = self.pos[c1.a] + v1, self.pos[c2.a] + v2
@@ -566,7 +638,7 @@ class Closures:
         acceleration = sp.Matrix([-(_part(second, i) - sum(A[i, j] * _dot(unknowns[j], 2)
                                                            for j in range(2)))
                                   for i in range(2)])
-        closure = Closure(text, left, right, list(unknowns), A.applyfunc(sp.simplify),
+        closure = Closure(text, left, right, list(unknowns), A.applyfunc(sp.expand),
                           velocity.applyfunc(_tidy), acceleration.applyfunc(_tidy))
         self.varying += list(unknowns)
         return closure
@@ -592,5 +664,8 @@ def _part(expr, i):
 
 
 def _tidy(expr):
-    return sp.collect(sp.expand(sp.simplify(expr)), [s for s in expr.free_symbols
-                                                     if s.name.endswith("dot")])
+    """A rate system's right side expanded and collected in the rates: each term a length
+    times the sines and cosines of the angles (sympy's simplify, which would fold a sum into
+    sqrt(2) cos(phi + pi/4), costs ten times the rest of the closures)."""
+    return sp.collect(sp.expand(expr), [s for s in expr.free_symbols
+                                        if s.name.endswith("dot")])

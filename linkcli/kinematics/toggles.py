@@ -8,7 +8,7 @@ states S, the rounding the number carries, in the number's own unit:
 
 - a dyad's discriminant (``dyads``): S from the magnitudes of its terms and of the points'
   coordinates; zero is an exact toggle, whose square root is rounding noise;
-- a quantity's rate over the driver (``runs.limits``): S = the quantity's scale per
+- a quantity's rate over the driver (``runs.limits.search``): S = the quantity's scale per
   radian of the driver, times the amplification 1 / m^(k + 1) the solve gives the rounding
   of a rate of order k at a position whose conditioning is m; zero at every sample is a
   quantity constant up to rounding, whose extremes are the constant itself.

@@ -24,6 +24,9 @@ first time one is made: the numeric path never imports it.  The helpers ``plane`
 place of ``complex(x, y)``, ``cmath.exp(1j a)``, ``cmath.phase``, ``math.sqrt``,
 ``math.hypot`` and ``math.pi * x``: on plain numbers they return exactly what those
 return.
+
+Its twin is every plain float and complex of the numeric model: ``Exact`` is one, with the
+formula beside it.
 """
 from __future__ import annotations
 

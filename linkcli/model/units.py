@@ -3,6 +3,9 @@
 Internally every quantity is SI: m, rad, N, N m, s, kg.  A file declares its
 units once (``units:``); values are converted on load and results converted
 back to the display unit of each reported quantity.
+
+``input.symbols.exact_factors`` is the twin of these factors for ``--symbolic``: the same
+units, exact (deg -> pi/180, in -> 0.0254 m).
 """
 from __future__ import annotations
 

@@ -47,8 +47,8 @@ def _evaluate(mech, q, qdot, qddot, names, method, tol) -> Result:
     """``names`` (none an expression) by the path they need."""
     if mech.elements is None:       # a file with a driver: no vibration modules to import
         if _asks_limits(mech, names):   # maxima, strokes ...: runs.limits
-            from linkcli.runs import limits
-            return limits.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
+            from linkcli.runs.limits import report as limit_report
+            return limit_report.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
         return quantities.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
     from linkcli.answers.quantities import vibration
     return vibration.evaluate(mech, list(names), Result(mech))

@@ -13,6 +13,9 @@ their numbers.
 
 An item that has no formula (a closed loop, whose position is the root of its closure
 equations) is named with the reason instead; no number is ever printed as a formula.
+
+The numeric twin is ``answers.quantities.vibration`` (the same problem's answers); the
+formulas are written within the processor time of ``texts.budget``.
 """
 from __future__ import annotations
 
@@ -92,10 +95,14 @@ def parse_numbers(text) -> tuple:
     return names
 
 
-def formulas(doc, k=None, numbers=()):
+def formulas(doc, k=None, numbers=(), seconds=None):
     """The formulas of ``doc`` for digit ``k``: a vibration problem's (Formulas) or a
-    linkage's closures (LinkageFormulas); ``numbers`` the parameters given numbers."""
+    linkage's closures (LinkageFormulas); ``numbers`` the parameters given numbers; those
+    not written within ``seconds`` of processor time (``texts.budget``, SECONDS by
+    default) are named instead."""
+    from linkcli.texts.budget import SECONDS, Budget
     from linkcli.input.document import build
+    budget = Budget(SECONDS if seconds is None else seconds)
     from linkcli.input.symbols import Symbolic
     mech = build(doc, k)
     known = set(mech.params) | ({"g"} if mech.dynamics is not None else set())
@@ -107,8 +114,8 @@ def formulas(doc, k=None, numbers=()):
     reading = Symbolic(frozenset(numbers))
     traced = build(doc, k, symbolic=reading)
     if mech.elements is None:
-        return closures(mech, traced, reading)
-    return vibration(mech, traced, reading, numbers)
+        return closures(mech, traced, reading, budget)
+    return vibration(mech, traced, reading, budget, numbers)
 
 
 def _gravity(mech, numbers):
@@ -131,9 +138,9 @@ def _table(reading, gravity) -> tuple:
     return kinds, units
 
 
-def vibration(mech, traced, reading, numbers=()) -> Formulas:
-    """The formulas of the vibration problem ``traced`` (``mech`` its numeric model)."""
-    from linkcli.forces import symbolic as fs
+def vibration(mech, traced, reading, budget, numbers=()) -> Formulas:
+    """The formulas of the vibration problem ``traced`` (``mech`` its numeric model), written
+    within ``budget`` (``texts.budget``); those not reached are named."""
     from linkcli.kinematics.symbolic import NoClosedForm, Symbols
     gravity = _gravity(mech, numbers)
     values = reading.values()
@@ -146,40 +153,79 @@ def vibration(mech, traced, reading, numbers=()) -> Formulas:
                    [c.name for j, c in enumerate(mech.coordinates) if j in imposed],
                    {c.name: ("rad" if c.base == "angle" else "m") for c in mech.coordinates},
                    symbols, kinds, numbers=dict(values))
+    numeric = _numeric_equilibrium(mech)
     try:
-        lag = fs.Lagrangian(s)
+        found = budget.run(lambda: _steps(s, numeric, budget))
     except NoClosedForm as exc:
         out.missing = {item: exc.detail for item in ITEMS}
-        out.loop = closures(mech, traced, reading)      # what can be given: the closures
+        out.loop = closures(mech, traced, reading, budget)
         return out
-    _linearised(out, lag)
+    _fill(out, found, budget)
     used = set().union(*({x.name for x in _free(out.values.get(item))} for item in ITEMS))
     out.symbols = {n: u for n, u in out.symbols.items() if n in used}
     return out
 
 
-def _linearised(out: Formulas, lag) -> None:
-    """Fill ``out`` from ``lag``: energies, equations, equilibrium, the linear system."""
+def _numeric_equilibrium(mech):
+    """The coordinates of the numeric equilibrium (SI): it chooses among roots, and stands
+    where the equilibrium has no formula."""
     from linkcli.forces.lagrange import Lagrangian
     from linkcli.forces.vibration import linearise
     from linkcli.kinematics.solvers import solver_for
-    mech = out.mech
-    out.values.update({"T": lag.T, "V": lag.V, "D": lag.D, "equations": lag.equations()})
-    numeric = linearise(Lagrangian(mech, solver_for(mech)))
-    eq = lag.equilibrium(numeric.eq.q)
-    out.how, out.stated, out.preloads = eq.how, eq.stated, eq.preloads
+    return linearise(Lagrangian(mech, solver_for(mech))).eq.q
+
+
+def _steps(s, numeric, budget) -> None:
+    """The formulas step by step, the most asked first, each kept as it is finished: T, V,
+    D; the equilibrium; M, K, R; F; the stability conditions; the characteristic polynomial
+    (or why it is not written); Lagrange's equations."""
+    from linkcli.errors import FormulaLimit
+    from linkcli.forces import symbolic as fs
+    lag = fs.Lagrangian(s, budget.check)
+    budget.keep(T=lag.T, V=lag.V, D=lag.D)
+    eq = lag.equilibrium(numeric)
+    budget.keep(equilibrium=eq)
+    M, K, R = lag.matrices(eq)
+    budget.keep(M=M, K=K, R=R)
+    budget.keep(F=lag.load(eq))
+    budget.check()
+    budget.keep(stability=fs.stability(K))
+    try:
+        budget.keep(characteristic=fs.characteristic(K, M, budget.check))
+    except FormulaLimit as exc:
+        if exc.reason != "terms":
+            raise
+        budget.keep(characteristic=exc)
+    budget.keep(equations=lag.equations())
+
+
+def _fill(out: Formulas, found: dict, budget) -> None:
+    """``out`` from the steps' ``found`` items; those not found named, with the reason."""
+    from linkcli.errors import FormulaLimit
+    for item in ITEMS:
+        value = found.get(item)
+        if value is None:
+            out.missing[item] = budget.exceeded().detail
+        elif isinstance(value, FormulaLimit):
+            out.missing[item] = value.detail
+        elif item == "equilibrium":
+            out.how, out.stated, out.preloads = value.how, value.stated, value.preloads
+            _stated(out, value)
+            out.values[item] = {q.name: v for q, v in value.values.items()
+                                if q.name in out.coordinates}
+        elif item == "characteristic":
+            out.values[item], out.roots = value
+        else:
+            out.values[item] = value
+
+
+def _stated(out: Formulas, eq) -> None:
+    """The numeric equilibrium's symbols q_e: their values, units and kinds."""
     out.numbers.update(eq.stated)
     for symbol in eq.stated:
         unit = out.units[symbol.name[:-2]]
         out.symbols[symbol.name] = unit
         out.kinds[symbol.name] = "angle" if unit == "rad" else "length"
-    out.values["equilibrium"] = {q.name: v for q, v in eq.values.items()
-                                 if q.name in out.coordinates}
-    linear = lag.linear(eq)
-    out.values.update({"M": linear.M, "K": linear.K, "R": linear.R, "F": linear.F,
-                       "stability": linear.stability,
-                       "characteristic": linear.characteristic})
-    out.roots = linear.roots
 
 
 @dataclass
@@ -197,18 +243,23 @@ class LinkageFormulas:
         return Ranking(self.kinds)
 
 
-def closures(mech, traced, reading) -> LinkageFormulas:
-    """The closures of the linkage ``traced`` (its numbers exact)."""
-    from linkcli.kinematics.symbolic import Closures, Symbols
+def closures(mech, traced, reading, budget) -> LinkageFormulas:
+    """The closures of the linkage ``traced`` (its numbers exact), written within ``budget``
+    (``texts.budget``): a group not reached is named."""
+    from linkcli.kinematics.symbolic import Closure, Closures, Symbols
     s = Symbols(traced, reading.si(), reading.values())
-    found = Closures(s)
+    found = Closures(s, write=False)
+    budget.run(lambda: found.write(budget.check))
+    written = list(found.closures)
+    written += [Closure(g.describe(), missing=budget.exceeded().detail)
+                for g in found.groups[len(written):]]
     kinds, symbols = _table(reading, None)
     used = set()
-    for c in found.closures:
+    for c in written:
         for x in (c.left, c.right):
             used |= {v.name for v in _free(x)}
     used |= {v.name for v in _free(list(found.values.values()))}
-    return LinkageFormulas(mech, found.closures, found.values,
+    return LinkageFormulas(mech, written, dict(found.values),
                            {n: u for n, u in symbols.items() if n in used}, kinds)
 
 
@@ -258,33 +309,45 @@ def sections(f, lang="en") -> list:
     if f.imposed:
         coords += f"; {w['imposed']}: " + ", ".join(f"{n} ({f.units[n]})" for n in f.imposed)
     out = [(w["title"], [f"{w['symbols']}: {symbols or '-'}", f"{w['coordinates']}: {coords}"])]
-    if f.missing:
-        for reason in sorted(set(f.missing.values())):
-            items = ", ".join(i for i in ITEMS if f.missing.get(i) == reason)
-            out.append((f"{items}: {w['missing']}", [reason]))
-        return out + (linkage_sections(f.loop, lang) if f.loop is not None else [])
+    for reason in sorted(set(f.missing.values())):
+        items = ", ".join(i for i in ITEMS if f.missing.get(i) == reason)
+        out.append((f"{items}: {w['missing']}", [reason]))
+    if f.loop is not None:
+        return out + linkage_sections(f.loop, lang)
     v = f.values
-    out.append((w["energies"], [Entry(item, v[item]) for item in ("T", "V", "D")]))
-    out.append((w["equations"], [Entry(f"({n})", e, "zero", equation_terms(f))
-                                 for n, e in zip(f.coordinates, v["equations"])]))
-    equilibrium = []
-    for name, value in v["equilibrium"].items():
+    if "T" in v:
+        out.append((w["energies"], [Entry(item, v[item]) for item in ("T", "V", "D")]))
+    if "equations" in v:
+        out.append((w["equations"], [Entry(f"({n})", e, "zero", equation_terms(f))
+                                     for n, e in zip(f.coordinates, v["equations"])]))
+    if "equilibrium" in v:
+        out.append((w["equilibrium"][f.how], _equilibrium_entries(f, w)))
+    if "stability" in v:
+        out.append((w["stability"], [Entry("", m, "positive") for m in v["stability"]]))
+    if "M" in v:
+        out.append((w["linear"], [f"x = {{{', '.join(f.coordinates)}}}"] +
+                    [Entry(f"[{item}]", v[item]) for item in ("M", "K", "R")] +
+                    ([Entry("{F}", sp.Matrix(v["F"]))] if "F" in v else [])))
+    if "characteristic" in v:
+        characteristic = [Entry("", v["characteristic"], "zero", _powers(OMEGA))]
+        if f.roots is not None:
+            characteristic += [Entry("omega^2", r) for r in f.roots]
+        out.append((w["characteristic"], characteristic))
+    return out
+
+
+def _equilibrium_entries(f: Formulas, w) -> list:
+    """q_e of each free coordinate (a numeric one as its symbol's value), the preloads."""
+    import sympy as sp
+    out = []
+    for name, value in f.values["equilibrium"].items():
         if isinstance(value, sp.Symbol) and value in f.stated:
-            equilibrium.append(f"{value.name} = {f.stated[value]:.10g} {f.units[name]}")
+            out.append(f"{value.name} = {f.stated[value]:.10g} {f.units[name]}")
         else:
-            equilibrium.append(Entry(name, value))
+            out.append(Entry(name, value))
     if f.preloads:
-        equilibrium.append(w["preloads"] + ":")
-        equilibrium += [Entry(f"N_{n}", x) for n, x in f.preloads.items()]
-    out.append((w["equilibrium"][f.how], equilibrium))
-    out.append((w["stability"], [Entry("", m, "positive") for m in v["stability"]]))
-    out.append((w["linear"], [f"x = {{{', '.join(f.coordinates)}}}"] +
-                [Entry(f"[{item}]", v[item]) for item in ("M", "K", "R")] +
-                [Entry("{F}", sp.Matrix(v["F"]))]))
-    characteristic = [Entry("", v["characteristic"], "zero", _powers(OMEGA))]
-    if f.roots is not None:
-        characteristic += [Entry("omega^2", r) for r in f.roots]
-    out.append((w["characteristic"], characteristic))
+        out.append(w["preloads"] + ":")
+        out += [Entry(f"N_{n}", x) for n, x in f.preloads.items()]
     return out
 
 
@@ -397,31 +460,32 @@ def as_dict(f) -> dict:
     out = {"coordinates": list(f.coordinates), "imposed": list(f.imposed),
            "units": {n: f.units[n] for n in f.coordinates + f.imposed},
            "symbols": dict(sorted(f.symbols.items())), "missing": dict(f.missing)}
-    if f.missing:
-        if f.loop is not None:
-            out["closures"] = as_dict(f.loop)
-        return out
+    if f.loop is not None:
+        out["closures"] = as_dict(f.loop)
     v = f.values
-    out.update({"T": s(v["T"]), "V": s(v["V"]), "D": s(v["D"]),
-                "M": [[s(x) for x in row] for row in v["M"].tolist()],
-                "K": [[s(x) for x in row] for row in v["K"].tolist()],
-                "R": [[s(x) for x in row] for row in v["R"].tolist()],
-                "F": [s(x) for x in v["F"]],
-                "equations": [s(e) for e in v["equations"]],
-                "stability": [s(m) for m in v["stability"]],
-                "characteristic": s(v["characteristic"]),
-                "roots": None if f.roots is None else [s(r) for r in f.roots],
-                "equilibrium": {n: s(x) for n, x in v["equilibrium"].items()},
-                "equilibrium_kind": f.how,
-                "equilibrium_values": {sym.name: val for sym, val in f.stated.items()},
-                "preloads": {n: s(x) for n, x in f.preloads.items()}})
+    for item in ("T", "V", "D", "characteristic"):
+        if item in v:
+            out[item] = s(v[item])
+    for item in ("M", "K", "R"):
+        if item in v:
+            out[item] = [[s(x) for x in row] for row in v[item].tolist()]
+    for item in ("F", "equations", "stability"):
+        if item in v:
+            out[item] = [s(x) for x in v[item]]
+    if "characteristic" in v:
+        out["roots"] = None if f.roots is None else [s(r) for r in f.roots]
+    if "equilibrium" in v:
+        out.update({"equilibrium": {n: s(x) for n, x in v["equilibrium"].items()},
+                    "equilibrium_kind": f.how,
+                    "equilibrium_values": {sym.name: val for sym, val in f.stated.items()},
+                    "preloads": {n: s(x) for n, x in f.preloads.items()}})
     return out
 
 
-def append(text, form, doc, k=None, numbers=None, lang="en") -> str:
+def append(text, form, doc, k=None, numbers=None, lang="en", seconds=None) -> str:
     """``text`` (a report in ``form``) with the formulas of ``doc``: a "symbolic" key of
     the JSON object, else the formulas' text after it."""
-    f = formulas(doc, k, parse_numbers(numbers))
+    f = formulas(doc, k, parse_numbers(numbers), seconds)
     if form == "json":
         import json
         data = json.loads(text)

@@ -16,6 +16,8 @@ Each answer is computed in SI with its dimension (:class:`Answer`) and shown in 
   first free one) in the mode: mm/deg for a length against an angle.
 
 Geometric quantities of the position section are evaluated at the equilibrium.
+
+The formulas of the same problem (``--symbolic``) are ``texts.symbolic``'s, its twin.
 """
 from __future__ import annotations
 

@@ -3,8 +3,8 @@
 Every problem found is collected with its YAML path and line, so that
 ``linkcli validate`` can report them all at once; loading raises the first
 batch as one :class:`InputErrors`.  The sections are read by one parser
-assembled from a reader per concern: bodies, driver and loads, report and keys; the
-``dynamics:`` section last, on the mechanism the others built.
+assembled from a reader per concern: bodies, driver and loads, quantities (by their
+kinds), report and keys; the ``dynamics:`` section last, on the mechanism the others built.
 
 With a ``Symbolic`` reading (``input.symbols``, its twin for ``--symbolic``) the same
 readers build the model with every parameter an exact number that carries its formula.
@@ -18,7 +18,13 @@ from linkcli.errors import InputError
 from linkcli.model.mechanism import Body, Mechanism, Quiz, split_rate
 from linkcli.model.units import Units
 from linkcli.input.source import Document
-from linkcli.input.report import SECTIONS, AnswersSection
+from linkcli.input.quantities import QuantitiesSection
+from linkcli.input.textbook import TextbookQuantities
+from linkcli.input.forces import ForceQuantities
+from linkcli.input.limits import LimitsSection
+from linkcli.input.vibration import VibrationQuantities
+from linkcli.input.report import SECTIONS, ReportSection
+from linkcli.input.keys import KeysSection
 from linkcli.input.bodies import BodiesSection
 from linkcli.input.contacts import ContactsSection
 from linkcli.input.derived import DerivedSection
@@ -40,8 +46,9 @@ __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS
            "NAME", "_Skip"]
 
 
-class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, AnswersSection,
-             DerivedSection, OscillationSection, FindSection):
+class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSection,
+             TextbookQuantities, ForceQuantities, LimitsSection, VibrationQuantities,
+             ReportSection, KeysSection, DerivedSection, OscillationSection, FindSection):
     """The whole document: units, params, frame and points, then each section."""
 
     def parse(self) -> Mechanism:

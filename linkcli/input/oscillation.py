@@ -101,7 +101,7 @@ class OscillationSection:
                                    of="coordinate")
 
     def with_part(self, name, value, path, pool) -> Quantity:
-        """A quantity of the vibration analysis (input.report), with the ``part`` of a
+        """A quantity of the vibration analysis (input.vibration), with the ``part`` of a
         complex one."""
         import dataclasses
         if not isinstance(value, dict) or "part" not in value:

@@ -371,7 +371,7 @@ def split_rate(name: str, names=()):
     A name ending in 'ddot' reads two ways ('wddot': the second rate of 'w' or the first of
     'wd'); the reading whose base is one of ``names`` (the file's quantities) is taken, and
     the second rate where none or both are (both defined is refused when the file is read:
-    input.report)."""
+    input.quantities)."""
     readings = [(name[:-len(suffix)], order) for suffix, order in (("ddot", 2), ("dot", 1))
                 if name.endswith(suffix) and len(name) > len(suffix)]
     known = [r for r in readings if r[0] in names]

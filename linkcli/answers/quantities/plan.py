@@ -20,7 +20,7 @@ from linkcli.errors import InputError, LinkcliError, SolveError
 from linkcli.kinematics.compiled import X as X_PROBE, Y as Y_PROBE, compiled, program_of
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import REPORT_SECTIONS, VIBRATION, split_rate
-from linkcli.input.report import LEVEL
+from linkcli.input.quantities import LEVEL
 from linkcli.model.units import FORCE, TORQUE
 
 #: a long array of driver values is solved this many positions at a time (see Plan._in_blocks)

@@ -17,7 +17,7 @@ from linkcli.kinematics.branches import own_coordinates
 from linkcli.kinematics.refusals import where_text
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import FRAME, Quantity
-from linkcli.input.report import LEVEL
+from linkcli.input.quantities import LEVEL
 
 #: a point is at rest (its velocity has no direction) where its speed is at most AT_REST
 #: times the largest speed of the mechanism's points; a body translates where its angular

@@ -38,8 +38,9 @@ import numpy as np
 from linkcli.errors import AtRestError, NoWorkError, AssemblyError, InputError, SelfLockingError, \
     SolveError
 from linkcli.kinematics import toggles
-from linkcli.kinematics.closed_form import SINGULAR, Kinematics
-from linkcli.kinematics.topology import Dist, Line
+from linkcli.kinematics.closed_form import Kinematics
+from linkcli.kinematics.groups import Dist, Line
+from linkcli.kinematics.refusals import SINGULAR
 from linkcli.model.mechanism import split_rate
 from linkcli.answers.memory import LONG, keep_freed_memory
 from linkcli.answers.quantities import needed_orders, plan_for, report_names, require_driver
@@ -672,7 +673,7 @@ def mechanism_size(mech) -> float:
 
 
 def _grad_rate(c, vel, unknown):
-    """The time derivative of ``closed_form._grad(c, pos, unknown)``: the same combination
+    """The time derivative of ``rates._grad(c, pos, unknown)``: the same combination
     of the velocities ``vel`` (absent points are fixed)."""
     if isinstance(c, Dist):
         return 2.0 * (vel.get(c.p, 0j) - vel.get(c.a, 0j))

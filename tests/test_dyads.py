@@ -11,7 +11,7 @@ import pytest
 import linkcli
 from linkcli.kinematics.closed_form import residuals
 from linkcli.kinematics.contacts import Track
-from linkcli.kinematics.topology import Coord, Dist, Line
+from linkcli.kinematics.groups import Coord, Dist, Line
 
 from closure import (CASE_IDS, CASES, assembled, closure_errors, load_case, q_factor, shipped,
                      size, sweep, variant)

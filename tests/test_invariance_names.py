@@ -38,7 +38,7 @@ from hypothesis import strategies as st
 import transforms as T
 from test_invariance_units import FILES, RANDOM, baseline, caught, data_of
 from linkcli.input.document import Parser
-from linkcli.kinematics import topology
+from linkcli.kinematics import assur
 
 VARIANTS = ("reverse", "permute", "prefix", "shuffle")
 
@@ -140,7 +140,7 @@ PLANTED = [("crank: first link in the file", "_DECOMPOSER", "body_with", _first_
             _alphabetical_link, "mechanisms/khurmi-8-4-fourbar-accelerations.yaml", "shuffle"),
            ("figure: positions by the points' rank", "PARSER", "moving",
             _positions_by_rank(Parser.moving), "mechanisms/padova-2020-01.yaml", "shuffle")]
-TARGETS = {"_DECOMPOSER": topology._Decomposer, "PARSER": Parser}
+TARGETS = {"_DECOMPOSER": assur._Decomposer, "PARSER": Parser}
 
 
 @pytest.mark.parametrize("what, target, attribute, planted, path, variant", PLANTED,

@@ -238,10 +238,10 @@ def test_angles_in_any_order_units_and_signs_are_each_names_value(q, monkeypatch
 @pytest.mark.parametrize("path", FILES, ids=os.path.basename)
 def test_conditioning_from_constant_gradient_norms_is_the_computed_one(path):
     """A dyad of fixed-length links and fixed guides divides its determinant by the
-    gradients' constant norms (closed_form._constant_norms: 2 L, |C - B|, 1): the same
+    gradients' constant norms (rates.constant_norms: 2 L, |C - B|, 1): the same
     sine of the angle between the constraint normals as |det| / (|G_1| |G_2|) computed
     from the solved positions, and the same rates as a system solved from those."""
-    from linkcli.kinematics.closed_form import DyadRates
+    from linkcli.kinematics.rates import DyadRates
     mech = _driven(path)
     try:
         solver = solver_for(mech)

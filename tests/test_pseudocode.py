@@ -19,7 +19,7 @@ import pytest
 import linkcli
 from linkcli.texts.pseudocode import Call, procedure, render
 from linkcli.kinematics.solvers import solver_for
-from linkcli.kinematics.topology import Group
+from linkcli.kinematics.groups import Group
 
 from cli_helpers import run
 from conftest import MECHANISMS

@@ -26,7 +26,7 @@ from hypothesis import HealthCheck, given, seed, settings
 from linkcli.input import expressions
 from linkcli.input import document as parsing
 from linkcli.model import units
-from linkcli.errors import InputError
+from linkcli.errors import InputError, ScaleError
 from linkcli.input.document import build as parse
 from linkcli.input.source import load_text, path_text
 
@@ -197,6 +197,8 @@ _VALUE_RULES = [             # loader-only when the value is an expression (text
 def loader_only(error: InputError, data) -> bool:
     """Whether ``error`` enforces a rule the JSON Schema cannot state."""
     detail, key = error.detail, error.key or ""
+    if isinstance(error, ScaleError):   # a range in metres: the file's unit decides the number
+        return True
     if any(re.search(p, detail) for p in _ALWAYS_LOADER):
         return True
     value = _value_at(data, key)

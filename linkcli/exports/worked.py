@@ -160,7 +160,7 @@ def _systems(solver, kin, order):
 
 
 def _constraint_text(c, mech, f, unit):
-    from linkcli.kinematics.topology import Dist, Line
+    from linkcli.kinematics.groups import Dist, Line
     if isinstance(c, Dist):
         length = "q" if c.length is None else f"{c.length / f:.6g} {unit}"
         return f"|{c.p} - {c.a}| = {length}"

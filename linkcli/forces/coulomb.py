@@ -30,7 +30,7 @@ import numpy as np
 
 from linkcli.errors import Caution, SelfLockingError
 from linkcli.forces import friction
-from linkcli.kinematics.closed_form import where_text
+from linkcli.kinematics.refusals import where_text
 
 #: the losses' iterate has converged when no unknown changes by more than this fraction of
 #: the largest (scaled); the error left is of the order of its square

@@ -27,7 +27,7 @@ import numpy as np
 
 from linkcli.errors import AtRestError
 from linkcli.forces import motion as dyn_mod
-from linkcli.kinematics.closed_form import where_text
+from linkcli.kinematics.refusals import where_text
 from linkcli.model.mechanism import FRAME
 
 #: a relative rotation at most AT_REST times the mechanism's largest rate has no sense

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.errors import Caution
-from linkcli.kinematics.closed_form import where_text
+from linkcli.kinematics.refusals import where_text
 from linkcli.forces import coulomb, friction
 from linkcli.forces.newton_euler import System
 from linkcli.forces.pairs import PairForce, hub

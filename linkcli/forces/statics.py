@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from linkcli.errors import NoWorkError
-from linkcli.kinematics.closed_form import where_text
+from linkcli.kinematics.refusals import where_text
 from linkcli.model.mechanism import FRAME
 
 

@@ -1,7 +1,8 @@
 """Kinematics: topology, then positions, velocities and accelerations.
 
-``topology`` (Grübler's count, the Assur decomposition), ``dyads`` (closed
-forms of each group), ``closed_form`` (the solver along the groups), the
+``grubler`` (Grübler's count), ``assur`` (the Assur decomposition into ``groups``,
+``contact_groups``), ``dyads`` (closed forms of each group), ``closed_form`` (the solver
+along the groups, with ``branches``, ``rates``, ``turns``, ``refusals``), the
 Newton family (``equations``, ``constraints``, ``corrector``, ``continuation``,
 ``newton``) and ``solvers``, the one place that picks a solver by method.
 May import: ``linkcli.errors``, ``linkcli.model``.

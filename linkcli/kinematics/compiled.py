@@ -16,7 +16,7 @@ and runs them in one function, :func:`_run`, position by position:
 - ``LINE_DRIVER``: P on a guide through fixed points with its x (or y) the coordinate q
   (a slider or an actuator's end driven along its guide);
 
-the rates of a dyad from its 2x2 system Re(conj(G_i) P') = r_i (``closed_form``'s module
+the rates of a dyad from its 2x2 system Re(conj(G_i) P') = r_i (``rates``' module
 docstring), with G = 2 (P - A) for a circle and the constant G = i (C - B) (r = 0) for the
 fixed guide.  Probes: the angle of z = P_b - P_a in [0, 2 pi) (or (-pi, pi]) and its
 rates Im w, Im(z''/z) - 2 Re w Im w with w = z'/z; its length |z| and rates |z| Re w,
@@ -44,9 +44,10 @@ import os
 
 import numpy as np
 
-from linkcli.kinematics.closed_form import SINGULAR, constant_norms, fixed_guide
+from linkcli.kinematics.rates import constant_norms, fixed_guide
 from linkcli.kinematics.dyads import ROUNDING, TOGGLE
-from linkcli.kinematics.topology import Dist
+from linkcli.kinematics.groups import Dist
+from linkcli.kinematics.refusals import SINGULAR
 
 #: group kinds of a program
 CRANK, RRR, CIRCLE_LINE, PLACE, LINE_DRIVER = 1, 2, 3, 4, 5
@@ -196,7 +197,7 @@ def _driven(dist) -> float:
 
 
 def _norms(group, fixed) -> float:
-    """|G_1| |G_2| where constant (``closed_form.constant_norms``), else 0: computed at
+    """|G_1| |G_2| where constant (``rates.constant_norms``), else 0: computed at
     each position."""
     norms = constant_norms(group, fixed)
     return 0.0 if norms is None else float(norms)

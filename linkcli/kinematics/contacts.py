@@ -30,7 +30,7 @@ The disc (centre C, second point M, radius r, the model's side s) turns by Turn(
 Differentiated in time, sum c_k mu_k' = 0 and sum c_k mu_k'' = 0: each measure gives its
 rates from the points' (``rate``, ``accel``) and its gradient G_P with
 d mu = Re(conj(G_P) dP) (``grad``).  A relation is solved for the one thing it leaves
-unknown (``topology``): the turn of a disc (its second point M = C + |M - C| e^{i theta}),
+unknown (``assur``): the turn of a disc (its second point M = C + |M - C| e^{i theta}),
 or a point X on which it is linear, which it puts on the line Re(conj(w) X) = v with
 w = sum c_k G_X,k (a constraint of a dyad, like a guide).
 """

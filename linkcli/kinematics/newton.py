@@ -15,10 +15,10 @@ from linkcli.kinematics.constraints import Constraints
 from linkcli.kinematics.continuation import Continuation
 from linkcli.kinematics.corrector import CHUNK, MAX_ITER, Corrector, solve_linear
 from linkcli.errors import AssemblyError, InputError
-from linkcli.kinematics.closed_form import (Kinematics, assembly_error, far_from_figure,
-                                           figure_coordinates, length_text, singular_error,
-                                           where_text)
-from linkcli.kinematics.topology import one_dof
+from linkcli.kinematics.branches import far_from_figure, figure_coordinates
+from linkcli.kinematics.closed_form import Kinematics
+from linkcli.kinematics.grubler import one_dof
+from linkcli.kinematics.refusals import assembly_error, length_text, singular_error, where_text
 
 __all__ = ["Constraints", "NewtonSolver", "DEFAULT_TOL", "SINGULAR_NEWTON"]
 

@@ -27,8 +27,9 @@ import math
 import numpy as np
 
 from linkcli.errors import AssemblyError, SingularError, SolveError
-from linkcli.kinematics.closed_form import SINGULAR, Solver
-from linkcli.kinematics.topology import partial
+from linkcli.kinematics.closed_form import Solver
+from linkcli.kinematics.assur import partial
+from linkcli.kinematics.refusals import SINGULAR
 from linkcli.model.mechanism import Driver
 
 #: Newton's tolerance on f(p) = q, over each coordinate's scale

@@ -1,7 +1,7 @@
 """Positions of the points as formulas of the coordinates, along the solving order.
 
-The groups are the topology's: ``analyse`` of the model read with ``--symbolic``,
-whose numbers carry their formulas (``model.exact``), taken in the order the numeric
+The groups are the Assur decomposition's: ``assur.analyse`` of the model read with
+``--symbolic``, whose numbers carry their formulas (``model.exact``), taken in the order the numeric
 solver takes them.  Each gives its point as a formula of the coordinates q and of
 the file's parameters, as the closed-form solver computes it:
 
@@ -24,9 +24,10 @@ Points are pairs (x, y) of sympy expressions; angles of vectors are found as
 rho (cos phi, sin phi) with rho free of the coordinates when the vector is one
 (:func:`angle`), else atan2(y, x).
 
-The numeric twin is ``kinematics.closed_form`` (positions and rates along the same groups;
-``kinematics.jacobian`` for bodies' angles and points), and ``kinematics.substitute`` for a
-coordinate the groups do not place (its closures are written with the substitute).
+The numeric twin is ``kinematics.closed_form`` (positions along the same groups,
+``kinematics.rates`` their rates; ``kinematics.jacobian`` for bodies' angles and points),
+and ``kinematics.substitute`` for a coordinate the groups do not place (its closures are
+written with the substitute).
 """
 from __future__ import annotations
 
@@ -36,7 +37,8 @@ import sympy as sp
 
 from linkcli.errors import SolveError
 from linkcli.kinematics.contacts import Along, Carried, Track, Turn
-from linkcli.kinematics.topology import Dist, Line, analyse, partial
+from linkcli.kinematics.assur import analyse, partial
+from linkcli.kinematics.groups import Dist, Line
 from linkcli.model import exact
 
 
@@ -49,7 +51,7 @@ class NoClosedForm(SolveError):
 
 
 def placed(mech):
-    """The solving order of ``mech`` (``topology.analyse``); NoClosedForm where the
+    """The solving order of ``mech`` (``assur.analyse``); NoClosedForm where the
     decomposition leaves a coordinate it does not place (a coupler's angle: the numeric
     solver reaches it through substitute coordinates, ``kinematics.substitute``, by Newton's
     method), since the points are then roots of closure equations in it."""

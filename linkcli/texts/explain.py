@@ -3,7 +3,7 @@ from __future__ import annotations
 
 from linkcli.kinematics.solvers import solver_for
 from linkcli.errors import LinkcliError
-from linkcli.kinematics.topology import driver_text, grubler
+from linkcli.kinematics.grubler import driver_text, grubler
 from linkcli.model.mechanism import FRAME
 
 

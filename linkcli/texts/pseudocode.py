@@ -32,7 +32,8 @@ from linkcli.errors import StructureError
 from linkcli.kinematics.dyads import cross
 from linkcli.kinematics.solvers import solver_for
 from linkcli.kinematics.contacts import Track
-from linkcli.kinematics.topology import Dist, Line, partial
+from linkcli.kinematics.assur import partial
+from linkcli.kinematics.groups import Dist, Line
 from linkcli.model.mechanism import FRAME
 
 #: the functions of the exam's library, with the argument order of their legend line

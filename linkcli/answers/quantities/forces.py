@@ -10,7 +10,7 @@ import numpy as np
 from linkcli.answers.quantities.textbook import located
 from linkcli.errors import InputError
 from linkcli.forces import motion
-from linkcli.kinematics.closed_form import where_text
+from linkcli.kinematics.refusals import where_text
 from linkcli.forces.statics import unknown_load
 from linkcli.model.mechanism import split_rate
 from linkcli.model.units import FORCE

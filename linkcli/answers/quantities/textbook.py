@@ -13,7 +13,8 @@ from linkcli.answers.quantities.geometry import override_unit, relative, signed_
     vector, wrap_angle
 from linkcli.errors import SolveError
 from linkcli.forces import motion
-from linkcli.kinematics.closed_form import own_coordinates, where_text
+from linkcli.kinematics.branches import own_coordinates
+from linkcli.kinematics.refusals import where_text
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import FRAME, Quantity
 from linkcli.input.quantities import LEVEL

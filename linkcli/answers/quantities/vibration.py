@@ -33,7 +33,7 @@ from linkcli.input.oscillation import OSCILLATION
 from linkcli.forces.lagrange import Lagrangian
 from linkcli.kinematics import jacobian as jac
 from linkcli.kinematics.solvers import solver_for
-from linkcli.kinematics.topology import SEVERAL_DRIVERS
+from linkcli.kinematics.grubler import SEVERAL_DRIVERS
 from linkcli.model.mechanism import VIBRATION, split_rate
 from linkcli.model.dimensions import FREQUENCY_DIM, coordinate_dim, generalised_force_dim, \
     matrix_dim, of_quantity

@@ -26,7 +26,8 @@ from linkcli.answers.memory import LONG, keep_freed_memory
 from linkcli.answers.quantities import needed_orders, plan_for, require_driver
 from linkcli.errors import AtRestError, NoWorkError, AssemblyError, SelfLockingError, \
     SolveError
-from linkcli.kinematics.closed_form import SINGULAR, Kinematics
+from linkcli.kinematics.closed_form import Kinematics
+from linkcli.kinematics.refusals import SINGULAR
 from linkcli.kinematics.solvers import solver_for
 from linkcli.runs.sweep.branch_points import BranchPoints
 from linkcli.runs.sweep.driver_range import DriverRange, block_of

@@ -22,8 +22,8 @@ import math
 import numpy as np
 
 from linkcli.kinematics import toggles
-from linkcli.kinematics.closed_form import SINGULAR
-from linkcli.kinematics.topology import Dist, Line
+from linkcli.kinematics.groups import Dist, Line
+from linkcli.kinematics.refusals import SINGULAR
 from linkcli.runs.sweep.issues import Issue
 from linkcli.runs.sweep.newton_path import solve_near
 
@@ -179,7 +179,7 @@ class BranchPoints:
 
 
 def _grad_rate(c, vel, unknown):
-    """The time derivative of ``closed_form._grad(c, pos, unknown)``: the same combination
+    """The time derivative of ``rates._grad(c, pos, unknown)``: the same combination
     of the velocities ``vel`` (absent points are fixed)."""
     if isinstance(c, Dist):
         return 2.0 * (vel.get(c.p, 0j) - vel.get(c.a, 0j))

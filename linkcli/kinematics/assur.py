@@ -1,9 +1,7 @@
-"""Topology: Grübler's count and the Assur decomposition.
+"""The Assur decomposition: the order in which the groups place the points.
 
-Grübler (planar): ``n = 3 (m - 1) - 2 R - 2 P - H`` with m bodies (frame
-included), R revolute pairs (at a point shared by j bodies there are j - 1),
-P prismatic pairs (one per slider block, one per actuator) and H higher pairs
-(a disc rolling without slipping, a taut cord on a pulley).
+The mobility is Grübler's count (``grubler``); the groups and their constraints are
+``groups``; the groups contacts form are ``contact_groups``.
 
 The decomposition is topology only: starting from the frame and the driver it
 repeatedly finds a moving point fixed by two constraints from known bodies
@@ -30,209 +28,21 @@ answer sheet never lists it, a worked solution names it as it is):
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from itertools import combinations
 
-import numpy as np
-
-from linkcli.errors import MobilityError, StructureError
-from linkcli.kinematics.contacts import Relation, Track, Turn, relations
+from linkcli.errors import StructureError
+from linkcli.kinematics.contact_groups import ContactGroups
+from linkcli.kinematics.contacts import Track, relations
+from linkcli.kinematics.groups import Coord, Dist, Group, Line
+from linkcli.kinematics.grubler import Grubler, one_dof
 from linkcli.model.mechanism import FRAME, Mechanism
-
-
-# --- constraint descriptions (topology only; geometry is looked up by the solver)
-@dataclass(frozen=True)
-class Dist:
-    """|P - A| = length; ``length`` None means coordinate number ``coord`` (a driven length)."""
-
-    p: str
-    a: str
-    length: float | None
-    body: str
-    coord: int = 0
-
-
-@dataclass(frozen=True)
-class Line:
-    """cross(C - B, P - B) = value: P on a line carried by B, C.  ``unknown`` is P or C."""
-
-    p: str
-    b: str
-    c: str
-    value: float
-    body: str
-    unknown: str
-
-
-@dataclass(frozen=True)
-class Coord:
-    """x (axis 'x') or y of P equals coordinate number ``coord``."""
-
-    p: str
-    axis: str
-    body: str = "driver"
-    coord: int = 0
-
-
-@dataclass
-class Group:
-    """One step of the solving order."""
-
-    kind: str              # driver-angle | driver-coord | RRR | RRP | PRR | PRP | RPP | RPR | place | RPR-actuator | roll
-    point: str | None      # the point it solves (None: nothing to solve)
-    constraints: tuple = ()
-    bodies: tuple = ()
-    place: tuple = ()      # for 'place': (K, M, N, w) with P = K + (M - N) w; for a dyad
-    #                        of a virtual point, the same recipe on the figure's points
-    driver: bool = False
-    note: str = ""
-    branch: int = 1        # assembly branch (+1/-1), chosen from the figure's positions
-    coord: int = 0         # the coordinate a driver group sets
-
-    @property
-    def is_dyad(self) -> bool:
-        return self.kind in ("RRR", "RRP", "PRR", "PRP", "RPP", "RPR")
-
-    def describe(self) -> str:
-        if self.kind == "place" and self.point.startswith("~"):
-            return f"draw the line through {self.place[0]} parallel to the slot of " \
-                f"{self.bodies[0]}"
-        if self.kind == "place":
-            return f"place {self.point} on {self.bodies[0]} (rigid)"
-        if self.kind == "RPR" and self.point.startswith("~"):
-            return f"dyad RPR: {self.bodies[0]} (slot off its pivot) from {self.note} " \
-                f"[{', '.join(self.bodies)}]"
-        if self.kind == "driver-angle":
-            return f"driver: {self.bodies[0]} (crank), {self.note}"
-        if self.kind == "driver-coord":
-            return f"driver: slider {self.bodies[0]}, {self.note}"
-        if self.kind == "RPR-actuator":
-            return f"dyad RPR: actuator {self.bodies[0]} between known points {self.note}"
-        if self.kind == "roll":
-            return f"{self.bodies[0]} turned by {self.note}"
-        return f"dyad {self.kind}: {self.point} from {self.note} [{', '.join(self.bodies)}]" + (
-            " (driven)" if self.driver else "")
-
-
-@dataclass
-class Grubler:
-    bodies: list
-    revolutes: list        # (point, bodies at it)
-    prismatics: list       # (name, body1, body2)
-    higher: list = field(default_factory=list)   # rolling contacts and cords, by name
-
-    @property
-    def m(self) -> int:
-        return len(self.bodies)
-
-    @property
-    def r(self) -> int:
-        return sum(len(b) - 1 for _, b in self.revolutes)
-
-    @property
-    def p(self) -> int:
-        return len(self.prismatics)
-
-    @property
-    def h(self) -> int:
-        return len(self.higher)
-
-    @property
-    def dof(self) -> int:
-        return 3 * (self.m - 1) - 2 * self.r - 2 * self.p - self.h
-
-    def formula(self) -> str:
-        if self.h:
-            return (f"n = 3(m - 1) - 2R - 2P - H = 3({self.m} - 1) - 2*{self.r} - 2*{self.p} - "
-                    f"{self.h} = {self.dof}")
-        return (f"n = 3(m - 1) - 2R - 2P = 3({self.m} - 1) - 2*{self.r} - 2*{self.p} = "
-                f"{self.dof}")
 
 
 @dataclass
 class Topology:
+    """Grübler's count and the groups in their solving order."""
+
     grubler: Grubler
     groups: list = field(default_factory=list)
-
-
-def grubler(mech: Mechanism) -> Grubler:
-    bodies = [FRAME] + list(mech.bodies)
-    members: dict[str, list] = {}
-    for name in mech.fixed:
-        if not name.startswith("~"):
-            members.setdefault(name, []).append(FRAME)
-    for body in mech.bodies.values():
-        for p in body.points:
-            members.setdefault(p, []).append(body.name)
-    revolutes = [(p, tuple(b)) for p, b in members.items() if len(b) > 1]
-    prismatics = [(a.name, a.name + ".cylinder", a.name + ".rod") for a in mech.actuators.values()]
-    prismatics += [(b.name, b.name, b.guide.carrier) for b in mech.bodies.values()
-                   if b.kind == "block"]
-    return Grubler(bodies, revolutes, prismatics, list(mech.rolling))
-
-
-def repeated_strands(mech: Mechanism) -> list:
-    """[(strand, earlier strand)] of belt strands that repeat an earlier one's relation: the
-    same two discs, both centres on the frame (the strand's run along u then never changes)
-    and the same ratio of turns omega = side other_side (r_D / r) omega_D (``contacts``)."""
-    seen, out = {}, []
-    for r in mech.rolling.values():
-        if r.kind != "belt" or r.center not in mech.fixed or r.track not in mech.fixed:
-            continue
-        ratio = r.side * r.other_side * r.track_radius / r.radius
-        pair = (r.disc, r.other)
-        if pair[::-1] in seen and pair not in seen:
-            ratio, pair = 1.0 / ratio, pair[::-1]
-        first = seen.get(pair)
-        if first is not None and abs(first[1] - ratio) <= 1e-9 * abs(ratio):
-            out.append((r.name, first[0]))
-        else:
-            seen.setdefault(pair, (r.name, ratio))
-    return out
-
-
-#: what to do with a mechanism of several inputs, which one 'driver:' cannot move
-SEVERAL_DRIVERS = ("one driver is supported, not several: hold all inputs but one (their "
-                   "points in 'frame:', what rolls on them rolling on the frame) and solve "
-                   "once per input; the velocities add, being linear in the input rates")
-
-
-def one_dof(mech: Mechanism) -> Grubler:
-    """Grübler's count, refusing a mechanism whose mobility is not its number of coordinates
-    (1 for a file with a ``driver:``)."""
-    count = grubler(mech)
-    n = len(mech.coordinates)
-    if count.dof == n:
-        return count
-    driven = mech.elements is None          # a file with a 'driver:', not 'coordinates:'
-    declared = f"1 (the one driver, {driver_text(mech.driver)})" if driven else "1" if n == 1 \
-        else f"{n} (the coordinates {', '.join(c.name for c in mech.coordinates)})"
-    repeats = repeated_strands(mech)
-    if repeats and count.dof + len(repeats) == n:
-        strand, first = repeats[0]
-        r = mech.rolling[strand]
-        raise MobilityError(
-            f"the belt strand '{strand}' joins the discs {r.disc} and {r.other} as '{first}' "
-            f"does, at the same ratio of turns, their centres fixed: it repeats that "
-            f"strand's relation and removes no degree of freedom, so Grübler's count says "
-            f"{count.dof} degrees of freedom, not {declared}: {count.formula()}",
-            file=mech.file,
-            key=f"cords.{strand}",
-            hint="leave the repeated strand out: one strand relates the turns of both discs")
-    hint = "check that every link, slider and actuator is listed and that pins shared by " \
-        "several bodies name the same point"
-    if count.dof > n and driven:
-        hint += f"; if the mechanism has {count.dof} inputs: {SEVERAL_DRIVERS}"
-    elif count.dof > n:
-        hint += "; a vibration problem declares one coordinate per degree of freedom under " \
-            "'coordinates:'"
-    raise MobilityError(f"the mechanism has {count.dof} degrees of freedom, not {declared}: "
-                        f"{count.formula()}", file=mech.file, hint=hint)
-
-
-def driver_text(d) -> str:
-    """The driver (or a coordinate) in words: 'angle of A->B', 'length AB', 'x of B'."""
-    return {"angle": f"angle of {d.a}->{d.b}", "length": f"length {d.a}{d.b}",
-            "x": f"x of {d.a}", "y": f"y of {d.a}"}[d.kind]
 
 
 def analyse(mech: Mechanism) -> Topology:
@@ -258,7 +68,7 @@ def partial(mech: Mechanism) -> Partial:
     return Partial(decomposer.groups, decomposer.known, list(decomposer.pending.values()))
 
 
-class _Decomposer:
+class _Decomposer(ContactGroups):
     def __init__(self, mech: Mechanism):
         self.mech = mech
         self.known = {p for p in mech.fixed}
@@ -388,137 +198,6 @@ class _Decomposer:
     def step(self) -> bool:
         return self.drivers() or self.place() or self.dyad() or self.rpr() or \
             self.yoke() or self.actuator() or self.roll()
-
-    def roll(self) -> bool:
-        """A disc turned by a contact that leaves only its turn unknown: its centre known,
-        its second point placed by the turn the relation gives (kinematics.contacts)."""
-        for name, rel in self.relations.items():
-            if name in self.consumed:
-                continue
-            unknown = [t for t, _, _ in rel.terms if not self.term_known(t)]
-            if len(unknown) != 1 or not isinstance(unknown[0], Turn):
-                continue
-            turn = unknown[0]
-            body = self.turned_body(turn)
-            if body is None:
-                continue
-            self.groups.append(Group("roll", turn.b, (rel, turn), (body.name,),
-                                     note=contact_text(self.mech, name, body.name)))
-            self.consumed.add(name)
-            self.known.add(turn.b)
-            self.settle(body, [turn.a, turn.b])
-            return True
-        return False
-
-    def term_known(self, term) -> bool:
-        """Whether a measure of a contact is known: its points are placed, or it is a turn
-        an angle coordinate gives."""
-        if isinstance(term, Turn) and term.coord is not None:
-            return True
-        return all(p in self.known for p in term.points)
-
-    def turned_body(self, turn):
-        """The link a contact's turn would place: unplaced, its first two points the turn's
-        a (known) and b (unknown)."""
-        if turn.a not in self.known or turn.b in self.known:
-            return None
-        return next((b for b in self.mech.bodies.values() if b.kind == "link" and
-                     b.name not in self.known_bodies and tuple(b.points[:2]) == (turn.a, turn.b)),
-                    None)
-
-    def tracks(self, p) -> list:
-        """The contacts that put the unknown point ``p`` on a line (``contacts.Track``): one
-        whose other measures are known, or the fewest whose unknown disc turns a weighted
-        sum of them leaves out (k contacts, k - 1 turns: a rope over several pulleys).  The
-        points of a slider that translates with ``p`` count as ``p`` (a hook block's
-        pulleys)."""
-        rigid = self.translating(p)
-        near = sorted({n for x in rigid for n in self.contacts_at.get(x, ())},
-                      key=self.contact_order.get)            # in the file's order
-        usable = [(n, self.relations[n]) for n in near
-                  if n not in self.consumed and self.on_line(self.relations[n], rigid)]
-        found = [Track(r, p, rigid=rigid, spend=(n,)) for n, r in usable
-                 if not self.unknown_turns(r)]
-        for size in range(2, len(usable) + 1):
-            for subset in combinations(usable, size):
-                track = self.combined(subset, p, rigid)
-                if track is not None:
-                    found.append(track)
-            if len(found) > 0:
-                break
-        return found
-
-    def unknown_turns(self, rel) -> list:
-        return [t for t, _, _ in rel.terms if isinstance(t, Turn) and not self.term_known(t)]
-
-    def combined(self, subset, p, rigid):
-        """The Track of sum lambda_i R_i over ``subset`` (k contacts with k - 1 unknown turns
-        between them) that leaves every turn out; None when they do not cancel, or when the
-        contacts left could not then turn the discs one by one."""
-        turns = list(dict.fromkeys(t for _, r in subset for t in self.unknown_turns(r)))
-        if len(turns) != len(subset) - 1:
-            return None
-        a = np.array([[r.coefficient(t) for t in turns] for _, r in subset])
-        _, sv, vt = np.linalg.svd(a.T) if turns else (None, np.array([]), np.ones((1, 1)))
-        if turns and (sv.size < len(turns) or sv[-1] < 1e-9 * sv[0]):
-            return None             # the turns are not independent: no single combination
-        weights = vt[-1]
-        if np.min(np.abs(weights)) < 1e-9 * np.max(np.abs(weights)):
-            return None             # a smaller set does it
-        rel = Relation.combine([(r, w) for (_, r), w in zip(subset, weights)], turns)
-        if not self.on_line(rel, rigid):
-            return None
-        for spent, _ in subset:
-            rest = [r for n, r in subset if n != spent]
-            if self.turned_one_by_one(rest, turns):
-                return Track(rel, p, rigid=rigid, spend=(spent,))
-        return None
-
-    def turned_one_by_one(self, rels, turns) -> bool:
-        """Whether ``rels`` give the ``turns`` one at a time (each step a contact with one
-        turn left unknown), once the point they share is placed."""
-        left, todo = set(turns), list(rels)
-        while todo:
-            step = next((r for r in todo if len(left & set(self.unknown_turns(r))) == 1), None)
-            if step is None:
-                return not left
-            left -= set(self.unknown_turns(step))
-            todo.remove(step)
-        return not left
-
-    def translating(self, p) -> dict:
-        """{point: its constant offset from p} of the points that translate with ``p``: a
-        slider's points on a fixed guide (p among them), or p alone."""
-        block = next((b for b in self.bodies_at.get(p, ()) if b.kind == "block"
-                      and b.guide.carrier == FRAME), None)
-        if block is None:
-            return {p: 0j}
-        g = block.guide
-        axis = self.mech.fixed[g.c] - self.mech.fixed[g.b]
-        u = axis / abs(axis)
-        return {x: (block.local[x] - block.local[p]) * u for x in block.points
-                if x not in self.known}
-
-    def on_line(self, rel, rigid) -> bool:
-        """Whether ``rel`` leaves unknown only the turns of discs and the points of
-        ``rigid`` (one translating body), these linearly: a line through them, once the
-        turns are left out."""
-        if not set(rigid) & rel.points():
-            return False
-        known = self.known
-        for term, _, _ in rel.terms:
-            if isinstance(term, Turn) and not self.term_known(term):
-                continue                # a disc's turn: left out by the combination
-            inside = set(term.points) & set(rigid)
-            if inside:
-                if not all(term.linear(x, known) for x in inside) or \
-                        any(x not in known for x in term.points if x not in rigid):
-                    return False
-            elif not self.term_known(term):
-                return False
-        w = sum(c * term.grad(self.figure, x) for term, c, _ in rel.terms for x in rigid
-                if not (isinstance(term, Turn) and not self.term_known(term)))
-        return abs(w) > 1e-9 / self.figure_size     # a line, not a degenerate one
 
     def place(self) -> bool:
         for body in self.mech.bodies.values():
@@ -732,20 +411,6 @@ class _Decomposer:
                                      note=f"{act.a}, {act.b}"))
             return True
         return False
-
-
-def contact_text(mech, name, disc) -> str:
-    """'NAME (rolling on a fixed line)', the cord's point, the belt's disc ... as the
-    decomposition describes a contact."""
-    r = mech.rolling[name]
-    on = "a fixed line" if r.carrier == FRAME else f"a line of {r.carrier}"
-    what = {"line": f"rolling on {on}", "cord": f"the cord to {r.point}",
-            "circle": f"rolling {'inside' if r.inside else 'outside'} the circle about "
-                      f"{r.track}",
-            "disc": f"rolling {'inside' if r.inside else 'outside'} disc {r.other}",
-            "belt": f"the belt from disc {r.other}" if disc == r.disc else
-                    f"the belt from disc {r.disc}"}
-    return f"{name} ({what[r.kind]})"
 
 
 def cross_local(a: complex, b: complex) -> float:

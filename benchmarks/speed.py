@@ -57,7 +57,7 @@ from speed_accuracy import CRANK_SLIDER, FOURBAR, SIXBAR, hand_fourbar  # noqa: 
 
 OUT = os.path.join(HERE, "out")
 SIZES = (360, COMPILED_MOST, 10 ** 4, 10 ** 6, 10 ** 7)
-BLOCK = 16384           # positions per block at 10^7 (runs.sweep.BLOCK)
+BLOCK = 16384           # positions per block at 10^7 (runs.sweep.blocks.BLOCK)
 ACCURACY_N = 10 ** 4
 PEERS = ("pylinkage",)
 

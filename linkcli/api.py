@@ -14,7 +14,7 @@ from __future__ import annotations
 from linkcli.runs.limits.names import sweep_names
 from linkcli.answers.quantities import Result
 from linkcli.runs.sheet import evaluate
-from linkcli.runs.sweep import Sweep, sweep
+from linkcli.runs.sweep.blocks import Sweep, sweep
 from linkcli.errors import LinkcliError
 from linkcli.input.document import build
 from linkcli.input.source import load_file, load_text
@@ -56,7 +56,7 @@ class Linkage:
         """Solve at every driver value of the 1-D array ``q`` (display units), keeping the
         values that solve where others do not (:meth:`solve` refuses the whole array).
 
-        Returns a :class:`linkcli.runs.sweep.Sweep`: ``solved`` marks the driver values
+        Returns a :class:`linkcli.runs.sweep.blocks.Sweep`: ``solved`` marks the driver values
         answered, ``values`` maps each name (default: the report's, without its limits of
         the motion) to its values there, in ``units``; ``issues`` names what happened at
         each of the others (a range that cannot be assembled, a toggle, a friction that

@@ -123,18 +123,20 @@ def _old_render(result, form, every=1, decimals=None):
     (DISPARI, 0, 360, 200, "newton"), (LIFT, 100, 200, 150, "newton")])
 def test_blocks_print_the_same_digits_and_reports_as_one_block(path, start, stop, steps,
                                                                method):
-    from linkcli.runs import sweep as sw
-    whole = sw.sweep(linkcli.load(path).model, sw.driver_values(start, stop, steps),
-                     method=method, block=10 ** 9)
+    from linkcli.runs.sweep.blocks import sweep, Sweeper
+    from linkcli.runs.sweep.driver_range import driver_range, driver_values
+    from linkcli.runs.sweep.output import write
+    whole = sweep(linkcli.load(path).model, driver_values(start, stop, steps),
+                  method=method, block=10 ** 9)
     assert whole.issues or path == SIXBAR   # ranges that cannot be assembled, toggles
     for form, every, decimals in (("csv", 1, None), ("json", 1, None), ("table", 1, None),
                                   ("csv", 4, 3), ("table", 7, 2), ("json", 3, None)):
         want = _old_render(whole, form, every, decimals) + "\n"
         for block in (3, 64) if method == "newton" else (1, 7, 64):
-            sweeper = sw.Sweeper(linkcli.load(path).model, sw.driver_range(start, stop, steps),
-                                 method=method, block=block)
+            sweeper = Sweeper(linkcli.load(path).model, driver_range(start, stop, steps),
+                              method=method, block=block)
             text = io.StringIO()
-            issues = sw.write(sweeper, form, every, decimals, text)
+            issues = write(sweeper, form, every, decimals, text)
             assert [i.text() for i in issues] == [i.text() for i in whole.issues]
             if method == "newton" and form == "csv" and decimals is None:
                 _same_but_substeps(text.getvalue(), want)
@@ -155,21 +157,21 @@ def _same_but_substeps(got, want):
 
 
 def test_singular_rows_and_ranges_across_block_boundaries(parallelogram):
-    from linkcli.runs import sweep as sw
+    from linkcli.runs.sweep.blocks import sweep
     mech = linkcli.load(parallelogram).model
     q = np.arange(-90.0, 271.0, 5.0)          # exact toggles at 0 and 180: rows left out
-    whole = sw.sweep(mech, q, block=10 ** 9)
+    whole = sweep(mech, q, block=10 ** 9)
     texts = [i.text() for i in whole.issues]
     assert sum("velocities undefined at q = 180 deg" in t for t in texts) == 1
     assert sum("branch point at q = 180 deg" in t for t in texts) == 1
     for block in range(1, 40):                # the toggle at every place in a block
-        got = sw.sweep(linkcli.load(parallelogram).model, q, block=block)
+        got = sweep(linkcli.load(parallelogram).model, q, block=block)
         assert [i.text() for i in got.issues] == texts, block
         assert np.array_equal(got.solved, whole.solved)
         assert np.array_equal(got.values["phi3dot"], whole.values["phi3dot"])
-    gaps = sw.sweep(linkcli.load(DISPARI).model, np.arange(0.0, 361.0, 1.0), block=10 ** 9)
+    gaps = sweep(linkcli.load(DISPARI).model, np.arange(0.0, 361.0, 1.0), block=10 ** 9)
     for block in (1, 2, 3, 16, 100):          # assembly ranges joined across blocks
-        got = sw.sweep(linkcli.load(DISPARI).model, np.arange(0.0, 361.0, 1.0), block=block)
+        got = sweep(linkcli.load(DISPARI).model, np.arange(0.0, 361.0, 1.0), block=block)
         assert [i.as_dict() for i in got.issues] == [i.as_dict() for i in gaps.issues]
 
 
@@ -212,9 +214,10 @@ def test_a_branch_point_is_located_to_the_stated_accuracy(parallelogram, method,
     located value must not depend on the path the solver took to the samples (Newton's
     continuation may leave a change point on either branch, as rounding decides): it is
     found on the conditioning, whose two branches mirror each other."""
-    from linkcli.runs import sweep as sw
-    got = sw.sweep(linkcli.load(parallelogram).model, sw.driver_values(start, stop, steps),
-                   method=method)
+    from linkcli.runs.sweep.blocks import sweep
+    from linkcli.runs.sweep.driver_range import driver_values
+    got = sweep(linkcli.load(parallelogram).model, driver_values(start, stop, steps),
+                method=method)
     found = [i.lo for i in got.issues if i.kind == "branch"]
     exact = [t for t in (0.0, 180.0, 360.0) if min(start, stop) <= t <= max(start, stop)]
     assert len(found) == len(exact), got.issues
@@ -223,25 +226,26 @@ def test_a_branch_point_is_located_to_the_stated_accuracy(parallelogram, method,
 
 
 def test_branch_points_across_block_boundaries(parallelogram):
-    from linkcli.runs import sweep as sw
+    from linkcli.runs.sweep.blocks import sweep
     for q in (np.linspace(100.0, 260.0, 17), np.linspace(101.0, 259.0, 9),
               np.array([150.0, 210.0])):
-        whole = [i.text() for i in sw.sweep(linkcli.load(parallelogram).model, q,
-                                            block=10 ** 9).issues]
+        whole = [i.text() for i in sweep(linkcli.load(parallelogram).model, q,
+                                         block=10 ** 9).issues]
         assert sum("branch point" in t for t in whole) == 1, whole
         for block in (1, 2, 3, 4):
-            got = sw.sweep(linkcli.load(parallelogram).model, q, block=block)
+            got = sweep(linkcli.load(parallelogram).model, q, block=block)
             assert [i.text() for i in got.issues] == whole, (q, block)
 
 
 @pytest.mark.parametrize("steps", [2, 3, 4, 6, 36])
 def test_no_branch_point_where_there_is_none(fourbar, steps):
-    from linkcli.runs import sweep as sw
+    from linkcli.runs.sweep.blocks import sweep
+    from linkcli.runs.sweep.driver_range import driver_values
     for path in (fourbar, SIXBAR, os.path.join(MECHANISMS, "polimi-crank-slider.yaml")):
         mech = linkcli.load(path).model
         unit, factor = mech.units.display("angle", 0)
         start = mech.driver.value / factor
-        got = sw.sweep(mech, sw.driver_values(start - 180, start + 180, steps))
+        got = sweep(mech, driver_values(start - 180, start + 180, steps))
         assert not [i for i in got.issues if i.kind == "branch"], (path, steps, got.issues)
 
 
@@ -345,7 +349,7 @@ def test_rates_of_loads_are_refused(fourbar, tmp_path, capsys):
                           "2", "--names", "M,Mdot,Mddot")
     assert code == 2 and out == ""
     assert "key '--names'" in err and "'Mdot' is a rate of the load 'M'" in err
-    from linkcli.runs.sweep import sweep
+    from linkcli.runs.sweep.blocks import sweep
     with pytest.raises(InputError) as caught:
         sweep(linkcli.load(fourbar).model, [0.0, 10.0], ["Mddot"])
     assert "rate of the load 'M'" in str(caught.value)

@@ -377,7 +377,7 @@ def test_a_slider_at_its_dead_centre_has_no_sense_of_friction():
 def test_a_sweep_leaves_out_the_rows_where_a_pair_is_at_rest(losses, left_out):
     """Each row where a friction has no sense is left out and named; the other rows are the
     values of each position solved alone."""
-    from linkcli.runs.sweep import sweep
+    from linkcli.runs.sweep.blocks import sweep
     mech = engine("F: {type: force, at: B, x: -800}", losses)
     q = np.linspace(0.0, 360.0, 17)
     got = sweep(mech.model, q, names=["T"])

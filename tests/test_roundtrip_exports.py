@@ -189,13 +189,13 @@ def test_a_sweeps_row_at_the_drivers_value_is_solve(name):
 
 def test_the_sweep_round_trip_catches_a_driver_value_off(monkeypatch):
     """Planted: the sweep solves each row at q (1 + 1e-6), printing q."""
-    from linkcli.runs import sweep
-    made = sweep.Sweeper.__init__
+    from linkcli.runs.sweep.blocks import Sweeper
+    made = Sweeper.__init__
 
     def shifted(self, *args, **kwargs):
         made(self, *args, **kwargs)
         self.q_factor *= 1 + 1e-6
-    monkeypatch.setattr(sweep.Sweeper, "__init__", shifted)
+    monkeypatch.setattr(Sweeper, "__init__", shifted)
     assert sweep_mismatches("mechanisms/padova-2020-07.yaml")
 
 

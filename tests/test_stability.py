@@ -14,7 +14,7 @@ from linkcli.kinematics import dyads
 from linkcli.cli import main
 from linkcli.errors import SingularError
 from linkcli.kinematics.newton import NewtonSolver
-from linkcli.runs.sweep import sweep
+from linkcli.runs.sweep.blocks import sweep
 
 EPS = np.finfo(float).eps
 

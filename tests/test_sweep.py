@@ -8,7 +8,8 @@ import pytest
 import linkcli
 from linkcli.cli import main
 from linkcli.errors import InputError
-from linkcli.runs.sweep import driver_values, sweep
+from linkcli.runs.sweep.blocks import sweep
+from linkcli.runs.sweep.driver_range import driver_values
 
 from conftest import MECHANISMS
 

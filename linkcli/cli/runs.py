@@ -150,7 +150,9 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
       linkcli sweep mechanisms/padova-2020-07.yaml --from 100 --to 160 --step 5 --format table
       linkcli sweep mechanisms/polimi-2001-09-18-vibration.yaml --vary ks=50:150:10
     """
-    from linkcli.runs import sweep as sweep_mod
+    from linkcli.runs.sweep.blocks import Sweeper
+    from linkcli.runs.sweep.driver_range import driver_range
+    from linkcli.runs.sweep.output import check_every, write as write_sweep
     not_an_input(output, file)
     chosen = [n.strip() for n in names.split(",") if n.strip()] if names else None
     if vary is not None:
@@ -163,7 +165,7 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
         from linkcli.runs import vary as vary_mod
         name, values = vary_mod.parse_vary(vary)
         mech = load(file, k, designed=False)     # a design question: solved at each value
-        sweep_mod.check_every(every)
+        check_every(every)
         variation = vary_mod.Variation(mech, name, values, chosen, method=method,
                                        tol=check_tol(tol))
         writer = (lambda put: vary_mod.write(variation, form, decimals, put))
@@ -172,12 +174,12 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
             raise InputError("give --from and --to (the driver's range), or --vary "
                              "NAME=FROM:TO:STEPS (a parameter's)", key="--from")
         mech = load(file, k, method=method, tol=check_tol(tol))
-        q = sweep_mod.driver_range(start, stop, steps, step)
+        q = driver_range(start, stop, steps, step)
         from linkcli.runs.limits.names import sweep_names
         chosen = sweep_names(mech, chosen)      # maxima, strokes ... are not functions of q
-        sweep_mod.check_every(every)
-        sweeper = sweep_mod.Sweeper(mech, q, chosen, method=method, tol=check_tol(tol))
-        writer = (lambda put: sweep_mod.write(sweeper, form, every, decimals, put))
+        check_every(every)
+        sweeper = Sweeper(mech, q, chosen, method=method, tol=check_tol(tol))
+        writer = (lambda put: write_sweep(sweeper, form, every, decimals, put))
     stream = Stream(output)     # rows are printed as each block is solved
     try:
         issues = writer(stream.put)

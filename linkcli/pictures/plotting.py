@@ -17,7 +17,7 @@ import tempfile
 import numpy as np
 
 from linkcli.answers.quantities import angle_period, report_names, require_driver
-from linkcli.runs.sweep import listing
+from linkcli.runs.sweep.names import listing
 from linkcli.runs.sheet import evaluate, refuse_driving
 from linkcli.pictures.drawing import (COLORS, draw_elements, draw_loads, draw_masses,
                                       draw_mechanism, draw_polygon, figure)
@@ -183,7 +183,7 @@ def plot(mech, sweep: str, names, output: str, dpi: int = 100, notify=None) -> l
     Driver values that cannot be solved are left blank, and what the sweep reports (ranges
     that cannot be assembled, rows left out at a toggle, branch points) goes to ``notify``
     (default: standard error, after 'linkcli: '); returns those reports."""
-    from linkcli.runs.sweep import sweep as solve_sweep
+    from linkcli.runs.sweep.blocks import sweep as solve_sweep
     check_output(output, IMAGE_FORMATS)
     require_driver(mech, "a plot against the driver")
     check_names(mech, names)
@@ -340,7 +340,7 @@ def animate(mech, output: str, sweep: str | None = None, fps: int = 12, dpi: int
     """The motion over ``sweep`` as an animated GIF, at most MAX_FRAMES frames, each written
     to the file as soon as it is drawn; branch points of the motion go to ``notify`` (as
     for :func:`plot`).  Returns the frame count."""
-    from linkcli.runs.sweep import Sweeper
+    from linkcli.runs.sweep.blocks import Sweeper
     check_output(output, ("gif",))
     require_driver(mech, "an animation")
     dyn = mech.dynamics

@@ -23,7 +23,7 @@ import numpy as np
 
 from linkcli.answers.quantities import angle_period
 from linkcli.runs.sheet import evaluate
-from linkcli.runs.sweep import load_rate_error
+from linkcli.runs.sweep.names import load_rate_error
 from linkcli.errors import LinkcliError
 from linkcli.input.document import build
 from linkcli.model.mechanism import split_rate

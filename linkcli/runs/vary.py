@@ -18,7 +18,9 @@ import numpy as np
 
 from linkcli.answers.quantities import report_names
 from linkcli.runs.sheet import refuse_driving
-from linkcli.runs.sweep import Block, MAX_POSITIONS, check_names, listing
+from linkcli.runs.sweep.blocks import Block
+from linkcli.runs.sweep.driver_range import MAX_POSITIONS
+from linkcli.runs.sweep.names import check_names, listing
 from linkcli.errors import InputError, LinkcliError
 from linkcli.model.dimensions import param_unit_name
 
@@ -77,7 +79,7 @@ class Gap:
 @dataclass
 class Varied:
     """The answers (display units) at each solved value of the parameter: the fields of a
-    sweep over the driver (runs.sweep.Sweep), ``q`` the parameter's values."""
+    sweep over the driver (runs.sweep.blocks.Sweep), ``q`` the parameter's values."""
 
     mechanism: object
     name: str
@@ -133,7 +135,7 @@ class Variation:
         self.first_error = None
 
     def blocks(self):
-        """The answers a block at a time (answers.sweep.Block, the parameter's values in the
+        """The answers a block at a time (runs.sweep.blocks.Block, the parameter's values in the
         place of the driver's)."""
         for lo in range(0, self.values.size, self.block):
             yield self._solve(lo, self.values[lo:lo + self.block])
@@ -201,8 +203,8 @@ def write(variation: Variation, form: str, decimals: int | None, put) -> list:
     """Print ``variation`` through ``put`` as CSV, JSON or a table (the formats of a sweep
     over the driver, the parameter's column first), a block at a time as it is solved;
     returns the reports."""
-    from linkcli.runs.sweep import _write
-    _write(variation.blocks(), variation.mech, "closed", variation.names, variation.units,
-           variation.unit, lambda: variation.issues, form, 1, decimals, put,
-           first=variation.name)
+    from linkcli.runs.sweep.output import write_rows
+    write_rows(variation.blocks(), variation.mech, "closed", variation.names, variation.units,
+               variation.unit, lambda: variation.issues, form, 1, decimals, put,
+               first=variation.name)
     return variation.issues

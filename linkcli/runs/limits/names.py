@@ -18,8 +18,8 @@ import math
 from linkcli.answers import quantities
 from linkcli.errors import InputError
 from linkcli.model.mechanism import limit_refusal, split_rate
-from linkcli.runs import sweep as sweep_mod
 from linkcli.runs.limits.extremes import num
+from linkcli.runs.sweep.names import listing
 
 
 def target(mech, name, key="--of", line=None):
@@ -32,7 +32,7 @@ def target(mech, name, key="--of", line=None):
     quantity = mech.quantities.get(base)
     if quantity is None:
         raise InputError(f"'{name}' is not a quantity of this file", file=mech.file, key=key,
-                         line=line, hint="defined: " + sweep_mod.listing(sorted(mech.quantities)))
+                         line=line, hint="defined: " + listing(sorted(mech.quantities)))
     refusal = limit_refusal(name, quantity, order)
     if refusal:
         raise InputError(refusal, file=mech.file, key=key, line=line,

@@ -35,10 +35,10 @@ from linkcli.answers import quantities
 from linkcli.errors import SolveError
 from linkcli.kinematics import toggles
 from linkcli.model.mechanism import split_rate
-from linkcli.runs import sweep as sweep_mod
 from linkcli.runs.limits import dwell, monotonic, quick_return, strokes
 from linkcli.runs.limits.extremes import Extreme, Limits, num
 from linkcli.runs.limits.names import driver_span, target
+from linkcli.runs.sweep.blocks import mechanism_size, sweep
 
 #: grid intervals over the range: extremes closer together than a grid step are not told apart
 GRID = 3600
@@ -114,8 +114,8 @@ def find(mech, name, start=None, stop=None, *, qdot=None, method="closed", tol=N
     turn = stop - start if periodic else (
         2 * math.pi / probe.q_factor if mech.driver.base == "angle" else None)
     q = start + (stop - start) * np.arange(grid + 1) / grid
-    swept = sweep_mod.sweep(mech, q, probe.names, method=method, tol=tol, qdot=probe.qdot,
-                            qddot=0.0)
+    swept = sweep(mech, q, probe.names, method=method, tol=tol, qdot=probe.qdot,
+                   qddot=0.0)
     found = Limits(name, swept.units.get(name, ""), q_unit, start, stop, periodic, turn)
     found.notes = [issue.text() for issue in swept.issues]
     found.position = order == 0 and quantity.kind not in SPEEDS
@@ -127,7 +127,7 @@ def find(mech, name, start=None, stop=None, *, qdot=None, method="closed", tol=N
     roots, levels, scales = [], [], []
     natural = _natural(mech, quantity, order, probe)
     per_q = probe.q_factor / (1.0 if mech.driver.base == "angle" else
-                              sweep_mod.mechanism_size(mech))
+                              mechanism_size(mech))
     for where, turns in _runs(rows, grid, periodic, found.whole):
         picked = np.searchsorted(rows, where)
         qs = q[where] + turns * (turn or 0.0)

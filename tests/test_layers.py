@@ -138,6 +138,17 @@ def test_the_package_has_no_import_cycle():
     assert cycles(graph(PACKAGE, "linkcli")) == []
 
 
+#: the most lines a module may hold: past it, a module has always held more than one concept
+#: (the splits of the sweep, the statement, the limits, the command line and the solver)
+LONGEST_MODULE = 700
+
+
+def test_no_module_is_longer_than_one_concept_needs():
+    long = {os.path.relpath(p, ROOT): n for p in modules(PACKAGE, "linkcli").values()
+            if (n := sum(1 for _ in open(p, encoding="utf-8"))) > LONGEST_MODULE}
+    assert long == {}, f"split these by concept (docs/architecture.md): {long}"
+
+
 def stated_rule(folder: str) -> set:
     """The layers a folder's ``__init__.py`` says it may import (its ``May import:`` line);
     ``linkcli`` alone is the package's own ``__init__``."""

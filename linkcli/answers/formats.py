@@ -9,6 +9,7 @@ import math
 import numpy as np
 
 from linkcli.model.mechanism import REPORT_SECTIONS
+from linkcli.model.rounding import noise_free
 
 HEADINGS = {
     "en": {"design": "Design (solved parameters)", "position": "Position analysis", "velocity": "Velocity analysis",
@@ -51,15 +52,13 @@ def fmt(value, decimals: int) -> str:
     return text
 
 
-# a value smaller than this fraction of its scale is the rounding noise of a zero
-NOISE = 1e-12
-
 
 def without_noise(result):
     """``result`` with every value that is rounding noise of a zero printed as 0.
 
     A value's scale is the largest magnitude among the sheet's values in the same display
-    unit (a point's coordinates count among the lengths): a value under NOISE times that
+    unit (a point's coordinates count among the lengths): a value under NOISE
+    (``model.rounding``) times that
     scale is 0 (a coordinate of 3.7e-14 mm in a mechanism 1144 mm across, a spring force of
     -5.6e-15 N beside a transmitted force of 607 N).  A value alone in its unit keeps what
     it has; ``fmt`` still prints a value under a millionth of the last decimal as 0."""
@@ -80,8 +79,7 @@ def without_noise(result):
         see(result.units.get(p), y)
 
     def clean(unit, value):
-        out = np.where(np.abs(value) < NOISE * scales[unit], 0.0, value) + 0.0   # no -0.0
-        return float(out) if out.ndim == 0 else out
+        return noise_free(value, scales[unit])
 
     return dataclasses.replace(
         result, values={n: clean(result.units.get(n), v) for n, v in values.items()},

@@ -68,13 +68,11 @@ def _worked(doc, ks, target, lang, no_figure, method, symbolic, numbers, seconds
     if ks is not None and len(ks) > 1:
         raise InputError("a worked solution is for one digit", key="--k",
                          hint="give one digit, e.g. --k 3")
-    if method != "closed":
-        raise InputError("a worked solution follows the closed-form groups", key="--method",
-                         hint="--method newton is for --to moodle")
     from linkcli.exports.worked import document
     k = ks[0] if ks else None
     formulas = None
     if symbolic:
         from linkcli.texts.symbolic import formulas as symbolic_formulas, parse_numbers
         formulas = symbolic_formulas(doc, k, parse_numbers(numbers), seconds)
-    return document(doc, k, target, lang, figure=not no_figure, formulas=formulas)
+    return document(doc, k, target, lang, figure=not no_figure, formulas=formulas,
+                    method=method)

@@ -21,13 +21,14 @@ import numpy as np
 
 from linkcli.runs import design
 from linkcli.texts.explain import explain
-from linkcli.answers.formats import fmt, heading
+from linkcli.answers.formats import fmt, heading, without_noise
 from linkcli.runs.sheet import evaluate
 from linkcli.texts.data import data_lines
 from linkcli.exports.text import fence, markdown, refuse_unfit, visible
 from linkcli.input.document import build
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import REPORT_SECTIONS
+from linkcli.model.rounding import noise_free
 
 WORDS = {
     "en": {"data": "Data", "structure": "Mobility and Assur decomposition",
@@ -61,38 +62,58 @@ class Block:
     header: list = field(default_factory=list)
 
 
-def _xy(z, f):
-    z = complex(np.ravel(z)[0]) / f
-    return f"({z.real:.6g}, {z.imag:.6g})"
+def _xy(z, f, scale=0.0):
+    """A point or vector z (SI) as '(x, y)' in the display unit ``f``; a component under
+    NOISE (``model.rounding``) of the larger of |z| and ``scale`` (SI: the size of the
+    values it sits among) is 0."""
+    z = complex(np.ravel(z)[0])
+    top = max(abs(z), scale)
+    x, y = (noise_free(part, top) / f for part in (z.real, z.imag))
+    return f"({x + 0.0:.6g}, {y + 0.0:.6g})"
 
 
-def document(doc, k=None, target="html", lang="en", figure=True, formulas=None) -> str:
+def _number(value, scale) -> str:
+    """A scalar (SI) to six digits, 0 where it is the rounding noise beside ``scale``."""
+    return f"{noise_free(float(np.ravel(value)[0]), scale):.6g}"
+
+
+def _largest(values) -> float:
+    """The largest magnitude among ``values`` (complex, SI), 0 for none."""
+    return max((float(np.max(np.abs(v))) for v in values), default=0.0)
+
+
+def document(doc, k=None, target="html", lang="en", figure=True, formulas=None,
+             method="closed") -> str:
     """The worked solution of the loaded document ``doc`` at digit ``k`` (None: the file's
-    own) as one HTML page (``target`` 'html', with the figure) or Markdown; ``formulas``
-    (``texts.symbolic.formulas``) adds the answers in symbols."""
+    own) as one HTML page (``target`` 'html', with the figure) or Markdown, its positions
+    solved by ``method`` ('closed' or 'newton'); ``formulas`` (``texts.symbolic.formulas``)
+    adds the answers in symbols."""
     refuse_unfit(doc)
-    items = blocks(build(doc, k), lang, figure=figure and target == "html")
+    items = blocks(build(doc, k), lang, figure=figure and target == "html", method=method)
     if formulas is not None:
         items = with_formulas(items, formulas, lang)
     return to_html(items, lang) if target == "html" else to_markdown(items)
 
 
-def blocks(mech, lang="en", figure=True) -> list:
+def blocks(mech, lang="en", figure=True, method="closed") -> list:
     """The worked solution of ``mech`` (at its own digit and driver value) as blocks; a
     design question's data state its unknowns and targets, its analysis and figure are
     those of the mechanism built with the unknowns' solution, and its results give the
-    unknowns, not the targets back."""
+    unknowns, not the targets back.  By the closed form ('closed') the solution shows each
+    group's systems; by 'newton' it states the unknowns and the equations Newton solves
+    together (as ``explain --method newton``).  The results are those ``solve`` prints:
+    a value that is the rounding noise of a zero is 0."""
     w = WORDS[lang]
-    result = evaluate(mech)
-    solution = design.solve(mech, evaluate) if design.unsolved(mech) else None
+    result = without_noise(evaluate(mech, method=method))
+    solution = design.solve(mech, evaluate, method) if design.unsolved(mech) else None
     solved = solution.mech if solution is not None else mech
     out = [Block("heading", mech.title)]
     if mech.statement:
         out += [Block("text", p.strip()) for p in mech.statement.split("\n\n") if p.strip()]
     out += [Block("heading", w["data"]), Block("lines", data_lines(mech, lang, solution))]
     out += [Block("heading", w["structure"]),
-            Block("lines", explain(mech).splitlines()[2:])]
-    if mech.elements is None:
+            Block("lines", explain(mech, method).splitlines()[2:])]
+    if mech.elements is None and method == "closed":
         out += _kinematics(solved, w)
     out.append(Block("heading", w["results"]))
     decimals = mech.report.get("decimals", 1)
@@ -106,7 +127,7 @@ def blocks(mech, lang="en", figure=True) -> list:
     if figure:
         from linkcli.exports.figure import figure_bytes
         out += [Block("heading", w["figure"]),
-                Block("figure", figure_bytes(solved, "svg").decode("utf-8"))]
+                Block("figure", figure_bytes(solved, "svg", method=method).decode("utf-8"))]
     return out
 
 
@@ -124,12 +145,13 @@ def _kinematics(mech, w) -> list:
     acc_systems = _systems(solver, kin, 2)
     kin.linear.clear()
     lines = []
+    size = _largest(kin.pos.values())
     for group in solver.groups:
         if group.point is None:
             lines.append(f"{group.describe()}")
             continue
         lines.append(f"{group.describe()}: {_shown(group.point)} = "
-                     f"{_xy(kin.pos[group.point], f)} {unit}")
+                     f"{_xy(kin.pos[group.point], f, size)} {unit}")
         for c in group.constraints:
             text = _constraint_text(c, mech, f, unit)
             if text:
@@ -138,11 +160,14 @@ def _kinematics(mech, w) -> list:
     for key, systems, suffix in (("velocities", vel_systems, "/s"),
                                  ("accelerations", acc_systems, "/s^2")):
         rows = []
+        top = _largest(s[5] for s in systems)       # the largest rate of the block
         for point, g1, g2, r1, r2, value in systems:
-            rows.append(f"{point}: G1 = {_xy(g1, 1)}, G2 = {_xy(g2, 1)}, "
-                        f"r1 = {float(np.ravel(r1)[0]):.6g}, r2 = {float(np.ravel(r2)[0]):.6g}"
+            g = _largest((g1, g2))
+            rows.append(f"{point}: G1 = {_xy(g1, 1, g)}, G2 = {_xy(g2, 1, g)}, "
+                        f"r1 = {_number(r1, _largest([g1]) * top)}, "
+                        f"r2 = {_number(r2, _largest([g2]) * top)}"
                         f"  ->  {point}{chr(39) * (1 if suffix == '/s' else 2)} = "
-                        f"{_xy(value, f)} {unit}{suffix}")
+                        f"{_xy(value, f, top)} {unit}{suffix}")
         if rows:
             out += [Block("heading", w[key]), Block("lines", [w["system"]] + rows)]
     if mech.loads and mech.dynamics is None and any(ld.value is None for ld in mech.loads.values()):

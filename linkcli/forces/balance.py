@@ -29,6 +29,7 @@ from linkcli.forces.friction import (coefficients, friction_circles, friction_po
 from linkcli.forces.joint_forces import solve
 from linkcli.kinematics.solvers import state
 from linkcli.forces.statics import coefficient, unknown_load
+from linkcli.model.rounding import noise_free
 from linkcli.model.units import FORCE, TORQUE
 
 
@@ -157,12 +158,36 @@ def _numbers(mech) -> list[str]:
     """The balance's terms (W) and the unknown load at the file's position."""
     terms = balance(mech)
     unknown = mech.unknown_load()
-    value = _display_load(mech, unknown, float(np.asarray(terms["unknown"])))
+    value = noise_free(terms["unknown"], _unknown_scale(mech))
+    value = _display_load(mech, unknown, value)
     watts = {k: f"{float(np.asarray(terms[k])) + 0.0:.6g} W"
              for k in ("dEdt", "motor", "resistant", "lost")}
     return [f"  at the file's position: dE/dt = {watts['dEdt']}, W_motor = {watts['motor']}, "
             f"W_resistant = {watts['resistant']}, W_lost = {watts['lost']}",
             f"  {unknown.name} = {value}"]
+
+
+def _unknown_scale(mech) -> float:
+    """The scale of the unknown load at the file's position (SI): the terms it balances per
+    unit driver rate, in magnitude, over |c|, its own virtual power per unit rate,
+
+        (sum |m (g - a_G)| |v_G,unit| + |J alpha omega_unit| + sum |Q c_Q|) / |c|,
+
+    the magnitudes of the vectors rather than their dot products, so that the scale does
+    not vanish where a lever does (an unknown that balances weights acting across the
+    motion is still measured against those weights)."""
+    dyn = mech.dynamics
+    kin, unit = state(mech)
+    actual = dyn_mod.motions(mech, dyn, kin.pos, kin.vel, kin.acc)
+    moved = dyn_mod.motions(mech, dyn, kin.pos, unit.vel)
+    total = sum(abs(a.mass) * abs(dyn.gravity - a.a) * abs(u.v) + abs(a.inertia * a.alpha * u.omega)
+                for a, u in zip(actual, moved))
+    total = total + sum(abs(ld.value * coefficient(mech, ld, kin.pos, unit.vel))
+                        for ld in mech.loads.values() if ld.value is not None)
+    lever = abs(coefficient(mech, mech.unknown_load(), kin.pos, unit.vel))
+    if not np.all(np.asarray(lever) > 0):      # no lever: unknown_load refuses it before
+        return 0.0
+    return float(np.max(np.asarray(total / lever, dtype=float)))
 
 
 def _display_load(mech, load, value) -> str:

@@ -35,6 +35,7 @@ from linkcli.kinematics import jacobian as jac
 from linkcli.kinematics.solvers import solver_for
 from linkcli.kinematics.grubler import SEVERAL_DRIVERS
 from linkcli.model.mechanism import VIBRATION, split_rate
+from linkcli.model.rounding import noise_free
 from linkcli.model.dimensions import FREQUENCY_DIM, coordinate_dim, generalised_force_dim, \
     matrix_dim, of_quantity
 from linkcli.model.units import ANGLE_DIM, DIMENSIONS, Dimension, FORCE_DIM
@@ -453,6 +454,21 @@ def _force_amplitude(analysis, quantity, X) -> float:
 
 
 # --- explain ---------------------------------------------------------------------------
+def _force_scales(lag, forces) -> dict:
+    """Each spring's force scale (N, or N m for a torsional spring): the largest, over the
+    springs of its kind, of |N| + k L, the force of a spring strained by the order of the
+    mechanism (L its size, 1 rad for a torsional spring), as in the equilibrium's load
+    scale; a force under NOISE of it is the rounding noise of a zero."""
+    def kind(spring):
+        return spring.measure.kind == "angle"
+
+    springs = lag.elements.springs
+    own = {name: abs(forces[name]) + s.stiffness * (1.0 if kind(s) else lag.size)
+           for name, s in springs.items() if name in forces}
+    return {name: max(v for other, v in own.items() if kind(springs[other]) == kind(springs[name]))
+            for name in own}
+
+
 def _text(units, answer: Answer) -> str:
     """An answer as '12.3 unit' in the file's units."""
     value, unit = shown(units, answer)
@@ -513,8 +529,10 @@ def explain_lines(mech) -> list:
         state = "imposed" if j in lin.imposed else "free"
         value = _text(units, _coordinate_answer(mech, j, eq.q[j], turn=True))
         lines.append(f"  {c.name} = {value} ({state})")
+    scales = _force_scales(lin.lag, eq.terms.forces)
     for name, force in eq.terms.forces.items():
         chosen = " (chosen so that the figure is an equilibrium)" if name in eq.preloads else ""
+        force = noise_free(force, scales[name])
         value = _text(units, Answer(force, *_element_force(el.springs[name])))
         lines.append(f"  spring {name}: force N = {value}{chosen}")
     lines.append(f"  residual |Q| = {eq.relative:.2e} of the load scale")

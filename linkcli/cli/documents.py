@@ -6,6 +6,7 @@ import os
 
 import click
 
+from linkcli.cli.console import echo
 from linkcli.cli.options import METHODS, check_symbolic, symbolic_options
 from linkcli.cli.output import emit, not_an_input
 from linkcli.errors import InputError
@@ -26,20 +27,23 @@ from linkcli.errors import InputError
               "quiz.tolerance, or half a unit of the last decimal), widened where the "
               "file's key prints a value with fewer decimals or a tolerance.")
 @click.option("--no-figure", is_flag=True, help="Leave the figure out.")
+@click.option("--no-given", is_flag=True, help="Moodle: leave out the boxes whose value "
+              "the question gives as data (the driver's value and rates, a known load).")
 @click.option("--method", type=click.Choice(METHODS), default="closed",
               show_default=True, help="Moodle: how positions are solved (newton for a "
               "class-III group).")
 @click.option("-o", "--output", required=True, help="File to write.")
 @click.option("--force", is_flag=True, help="Replace the output file if it exists.")
 @symbolic_options
-def export(file, target, k_text, lang, decimals, tolerance, no_figure, method, output, force,
-           symbolic, numbers, seconds):
+def export(file, target, k_text, lang, decimals, tolerance, no_figure, no_given, method,
+           output, force, symbolic, numbers, seconds):
     """Export FILE for a course: a Moodle quiz with every digit's variant, or a worked
     solution to hand out.
 
     \b
     Examples:
       linkcli export mechanisms/padova-2020-02.yaml --to moodle --k 0-9 -o quiz.xml
+      linkcli export mechanisms/padova-2020-02.yaml --to moodle --no-given -o quiz.xml
       linkcli export mechanisms/padova-2020-07.yaml --to html --lang it -o solution.html
     """
     from linkcli.runs.batch import parse_k
@@ -54,13 +58,26 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, method, o
         raise InputError("--symbolic goes with a worked solution (--to html or markdown)",
                          key="--symbolic", hint="drop --symbolic for a Moodle export")
     check_symbolic(symbolic, numbers, seconds)
+    if no_given and target != "moodle":
+        raise InputError("--no-given goes with a Moodle quiz (--to moodle): a worked "
+                         "solution asks no boxes", key="--no-given",
+                         hint="drop --no-given for a worked solution")
     if target == "moodle":
-        from linkcli.exports.moodle import export as make
+        from linkcli.exports.moodle import export as make, repeated
         text = make(doc, ks, decimals=decimals, tolerance=tolerance, lang=lang,
-                    figure=not no_figure, method=method)
-    else:
-        text = _worked(doc, ks, target, lang, no_figure, method, symbolic, numbers, seconds)
+                    figure=not no_figure, method=method, no_given=no_given)
+        emit(text.rstrip("\n"), output)
+        echo(_repeated_line(file, *repeated(doc), no_given), err=True)
+        return
+    text = _worked(doc, ks, target, lang, no_figure, method, symbolic, numbers, seconds)
     emit(text.rstrip("\n"), output)
+
+
+def _repeated_line(file, count, total, no_given) -> str:
+    """'FILE: N of M boxes ask a value the question gives', and what --no-given does."""
+    what = "left out by --no-given" if no_given else "--no-given leaves them out"
+    return (f"{os.path.basename(file)}: {count} of {total} box{'' if total == 1 else 'es'} "
+            f"ask{'s' if count == 1 else ''} a value the question gives ({what})")
 
 
 def _worked(doc, ks, target, lang, no_figure, method, symbolic, numbers, seconds) -> str:

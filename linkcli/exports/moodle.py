@@ -33,7 +33,10 @@ question/type/numerical of Moodle 4 and 5):
   a comma, with '.' between thousands; English: a point, with ','): the question says
   which one its language expects;
 - the figure is a file of the question, linked as ``@@PLUGINFILE@@/`` and its name
-  URL-encoded.
+  URL-encoded;
+- a box whose value the question states as data (:func:`given`: the driver's quantity
+  and the rates the statement gives, a known load) is asked back unless ``no_given``
+  leaves it out; the weights are then those of the boxes that remain.
 
 Text from the file is escaped for HTML, and braces become entities so that nothing but
 the answer boxes reads as Cloze; the XML writer escapes the rest.  The questions sit in
@@ -65,7 +68,7 @@ from linkcli.texts.quantities import describe
 from linkcli.errors import InputError, LinkcliError, SolveError
 from linkcli.exports.text import refuse_unfit, visible
 from linkcli.input.document import build
-from linkcli.model.mechanism import REPORT_SECTIONS
+from linkcli.model.mechanism import REPORT_SECTIONS, split_rate
 
 SHARE = Fraction(1, 1000)       # a section's share of the mark: within 0.1 % of its points'
 MAX_MARK = 10_000               # the largest mark written (Moodle's field holds < 100 000)
@@ -97,14 +100,15 @@ def text(value) -> str:
 
 
 # --- marks --------------------------------------------------------------------------------------
-def weights(mech) -> tuple[dict, int]:
+def weights(mech, left_out=frozenset()) -> tuple[dict, int]:
     """({section: the whole weight of each of its boxes}, the question's mark = their sum).
 
     One per box without ``quiz.points``; the points per box when they are whole numbers
     (the mark is then the sum of the points); else the smallest weights whose sections
-    keep their share of ``quiz.points`` within SHARE (see the module)."""
-    sections = [s for s in REPORT_SECTIONS if _asked(mech, s)]
-    counts = {s: len(_asked(mech, s)) for s in sections}
+    keep their share of ``quiz.points`` within SHARE (see the module).  The boxes are
+    those the question asks, less ``left_out``."""
+    sections = [s for s in REPORT_SECTIONS if _asked(mech, s, left_out)]
+    counts = {s: len(_asked(mech, s, left_out)) for s in sections}
     points = mech.quiz.points
     if not points:
         return {s: 1 for s in sections}, sum(counts.values())
@@ -261,14 +265,14 @@ def plugin_link(path: str) -> str:
                                         for part in path.split("/"))
 
 
-def instructions(mech, result, places, lang) -> str:
+def instructions(mech, result, places, lang, left_out=frozenset()) -> str:
     """How to write the answers: the decimal separator, the decimals, and for angles the
-    two equivalent values that score."""
+    two equivalent values that score (where a box, not one ``left_out``, asks one)."""
     words = WORDS[lang]
     counted = words["places"][min(places, 2)].format(n=places)
     lines = [words["separator"].format(places=counted)]
     units = {result.units[n] for n in asked(mech, report_names(mech))
-             if angle_period(mech, n, result.units[n]) is not None}
+             if n not in left_out and angle_period(mech, n, result.units[n]) is not None}
     if units:
         turn, example = ("360", (330, -30)) if "deg" in units else \
             ("2π", (5.5, 5.5 - 2 * math.pi))
@@ -278,7 +282,8 @@ def instructions(mech, result, places, lang) -> str:
     return "<p>" + " ".join(text(line) for line in lines) + "</p>"
 
 
-def question_html(mech, result, places, boxes, lang, figure_name, solution=None) -> str:
+def question_html(mech, result, places, boxes, lang, figure_name, solution=None,
+                  left_out=frozenset()) -> str:
     """The question's text: the data (a design question's unknowns and targets as
     ``solution`` states them), the figure, how to answer, and the boxes by section."""
     words = WORDS[lang]
@@ -291,9 +296,9 @@ def question_html(mech, result, places, boxes, lang, figure_name, solution=None)
     if figure_name:
         parts.append(f'<p><img src="{plugin_link(figure_name)}" alt="{text(words["figure"])}" '
                      'style="max-width: 100%"></p>')
-    parts.append(instructions(mech, result, places, lang))
+    parts.append(instructions(mech, result, places, lang, left_out))
     for section in REPORT_SECTIONS:
-        names = _asked(mech, section)
+        names = _asked(mech, section, left_out)
         if not names:
             continue
         heading = section_heading(mech, section, lang)
@@ -304,10 +309,61 @@ def question_html(mech, result, places, boxes, lang, figure_name, solution=None)
     return "".join(parts)
 
 
-def _asked(mech, section) -> list:
+def _asked(mech, section, left_out=frozenset()) -> list:
     """The boxes of a section of the report: a design question's targets are data, not
-    asked back."""
-    return asked(mech, mech.report.get(section) or [])
+    asked back; nor are the names in ``left_out``."""
+    return [n for n in asked(mech, mech.report.get(section) or []) if n not in left_out]
+
+
+# --- boxes that repeat the statement's data -----------------------------------------------------
+def given(mech) -> set:
+    """The report's names whose value the question states as data: the driver's quantity
+    (``q``, or a quantity measuring what the driver measures), its rate, and its
+    acceleration when the statement gives it (a nonzero one, or one of a file that asks
+    accelerations or dynamics: :mod:`linkcli.texts.loads`); a load with a known value, or a
+    component of one.  A vibration problem's coordinates are unknowns, not data."""
+    out = set()
+    for name in asked(mech, report_names(mech)):
+        base, order = split_rate(name, mech.quantities)
+        quantity = mech.quantities.get(base)
+        if quantity is None:
+            continue
+        if quantity.kind == "load":
+            if mech.loads[quantity.a].value is not None:
+                out.add(name)
+        elif _measures_driver(mech, quantity) and (order < 2 or _accel_stated(mech)):
+            out.add(name)
+    return out
+
+
+def _measures_driver(mech, quantity) -> bool:
+    """Whether ``quantity`` is the driver's coordinate: ``q``, or the angle of the same
+    vector, the length between the same points, the same coordinate of the same point."""
+    d = mech.driver
+    if mech.elements is not None or d is None:
+        return False
+    if quantity.kind == "q":
+        return True
+    if quantity.kind != d.kind or quantity.a is None:
+        return False
+    if d.kind == "length":
+        return {quantity.a, quantity.b} == {d.a, d.b}
+    return quantity.a == d.a and (d.kind != "angle" or quantity.b == d.b)
+
+
+def _accel_stated(mech) -> bool:
+    """Whether the statement gives the driver's acceleration (as :mod:`linkcli.texts.loads`
+    words the driver)."""
+    return bool(mech.driver.accel or mech.report.get("acceleration")
+                or mech.dynamics is not None)
+
+
+def repeated(doc) -> tuple[int, int]:
+    """(boxes whose value the question gives, boxes) of a question of ``doc``: the report's
+    names are the same for every digit."""
+    mech = build(doc, None)
+    names = asked(mech, [n for s in REPORT_SECTIONS for n in mech.report.get(s) or []])
+    return len(given(mech) & set(names)), len(names)
 
 
 def _solved(mech, method):
@@ -328,21 +384,22 @@ def _digit(mech) -> str:
     return f"digit k = {mech.k}: " if mech.k is not None else ""
 
 
-def _boxes(mech, result, places, tolerance, file_k) -> list:
-    chosen, _ = weights(mech)
+def _boxes(mech, result, places, tolerance, file_k, left_out=frozenset()) -> list:
+    chosen, _ = weights(mech, left_out)
     base = quiz_tolerance(mech, places, tolerance)
     return [box(mech, result, name, chosen[section], places, base, file_k)
-            for section in REPORT_SECTIONS for name in _asked(mech, section)]
+            for section in REPORT_SECTIONS for name in _asked(mech, section, left_out)]
 
 
-def _checked(mech, result, places, tolerance, file_k, decimals) -> list:
+def _checked(mech, result, places, tolerance, file_k, decimals, left_out=frozenset()) -> list:
     """The boxes, or a refusal naming the box Moodle would not grade as written."""
-    boxes = _boxes(mech, result, places, tolerance, file_k)
+    boxes = _boxes(mech, result, places, tolerance, file_k, left_out)
     for b in boxes:
         reason = b.refusal()
         if reason is None:
             continue
-        fewer = _stored_places(lambda p: _boxes(mech, result, p, tolerance, file_k), places)
+        fewer = _stored_places(lambda p: _boxes(mech, result, p, tolerance, file_k, left_out),
+                               places)
         key = "--decimals" if decimals is not None else "report.decimals"
         hint = (f"use {key} {fewer} or fewer" if fewer is not None and tolerance is None
                 and mech.quiz.tolerance is None else "give a larger tolerance or fewer "
@@ -355,12 +412,13 @@ def _checked(mech, result, places, tolerance, file_k, decimals) -> list:
 
 
 def export(doc, ks, decimals=None, tolerance=None, lang="it", figure=True,
-           method="closed") -> str:
+           method="closed", no_given=False) -> str:
     """The Moodle XML text for the document ``doc`` at digits ``ks`` (None: the file's own).
 
     ``figure``: True for the exam's figure, False for none, or a function of the
     mechanism giving the PNG's bytes.  ``method``: 'closed' or 'newton' (a class-III
-    group needs Newton)."""
+    group needs Newton).  ``no_given``: leave out the boxes whose value the question
+    states (:func:`given`)."""
     refuse_unfit(doc)
     base = build(doc, None)
     if not report_names(base):
@@ -379,14 +437,21 @@ def export(doc, ks, decimals=None, tolerance=None, lang="it", figure=True,
         mech = build(doc, k)
         result, solution = _solved(mech, method)
         places = mech.report.get("decimals", 1) if decimals is None else decimals
-        boxes = _checked(mech, result, places, tolerance, base.k, decimals)
+        left_out = frozenset(given(mech)) if no_given else frozenset()
+        boxes = _checked(mech, result, places, tolerance, base.k, decimals, left_out)
+        if not boxes:
+            raise InputError(f"{_digit(mech)}every box of the report asks a value the "
+                             "question gives, so --no-given leaves no question",
+                             file=mech.file, key="--no-given",
+                             hint="drop --no-given, or report a quantity to find")
         figure_name = f"{name}-k{mech.k}.png" if mech.k is not None else f"{name}.png"
         q = ET.SubElement(quiz, "question", type="cloze")
         ET.SubElement(ET.SubElement(q, "name"), "text").text = \
             f"{mech.title}" + (f" (k = {mech.k})" if mech.k is not None else "")
         qt = ET.SubElement(q, "questiontext", format="html")
         ET.SubElement(qt, "text").text = question_html(
-            mech, result, places, boxes, lang, figure_name if picture else None, solution)
+            mech, result, places, boxes, lang, figure_name if picture else None, solution,
+            left_out)
         if picture:
             f = ET.SubElement(qt, "file", name=figure_name, path="/", encoding="base64")
             f.text = base64.b64encode(picture(mech)).decode("ascii")

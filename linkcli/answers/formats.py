@@ -52,7 +52,6 @@ def fmt(value, decimals: int) -> str:
     return text
 
 
-
 def without_noise(result):
     """``result`` with every value that is rounding noise of a zero printed as 0.
 

@@ -29,6 +29,7 @@ from linkcli.input.document import build
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import REPORT_SECTIONS
 from linkcli.model.rounding import noise_free
+from linkcli.texts.italian import italian
 
 WORDS = {
     "en": {"data": "Data", "structure": "Mobility and Assur decomposition",
@@ -104,6 +105,7 @@ def blocks(mech, lang="en", figure=True, method="closed") -> list:
     together (as ``explain --method newton``).  The results are those ``solve`` prints:
     a value that is the rounding noise of a zero is 0."""
     w = WORDS[lang]
+    say = _language(lang)
     result = without_noise(evaluate(mech, method=method))
     solution = design.solve(mech, evaluate, method) if design.unsolved(mech) else None
     solved = solution.mech if solution is not None else mech
@@ -112,15 +114,15 @@ def blocks(mech, lang="en", figure=True, method="closed") -> list:
         out += [Block("text", p.strip()) for p in mech.statement.split("\n\n") if p.strip()]
     out += [Block("heading", w["data"]), Block("lines", data_lines(mech, lang, solution))]
     out += [Block("heading", w["structure"]),
-            Block("lines", explain(mech, method).splitlines()[2:])]
+            Block("lines", [say(x) for x in explain(mech, method).splitlines()[2:]])]
     if mech.elements is None and method == "closed":
-        out += _kinematics(solved, w)
+        out += _kinematics(solved, w, say)
     out.append(Block("heading", w["results"]))
     decimals = mech.report.get("decimals", 1)
     for section in REPORT_SECTIONS:
         names = design.asked(mech, mech.report.get(section) or [])
         if names:
-            rows = [[n, fmt(np.ravel(result.values[n])[0], decimals), result.units[n]]
+            rows = [[n, say(fmt(np.ravel(result.values[n])[0], decimals)), result.units[n]]
                     for n in names]
             title = heading(mech, section, lang)
             out.append(Block("table", rows, [title, w["value"], w["unit"]]))
@@ -131,8 +133,15 @@ def blocks(mech, lang="en", figure=True, method="closed") -> list:
     return out
 
 
-def _kinematics(mech, w) -> list:
-    """Closure, velocity and acceleration systems of each group, and the statics."""
+def _language(lang):
+    """The function that writes a solving line (English, as the solvers make it) in
+    ``lang``: Italian words and decimal comma for 'it' (``texts.italian``)."""
+    return italian if lang == "it" else str
+
+
+def _kinematics(mech, w, say=str) -> list:
+    """Closure, velocity and acceleration systems of each group, and the statics, each line
+    written by ``say`` (``_language``)."""
     solver = solver_for(mech)
     d = mech.driver
     unit, f = mech.units.display("length", 0)
@@ -156,7 +165,7 @@ def _kinematics(mech, w) -> list:
             text = _constraint_text(c, mech, f, unit)
             if text:
                 lines.append(f"    {text}")
-    out = [Block("heading", w["positions"]), Block("lines", lines)]
+    out = [Block("heading", w["positions"]), Block("lines", [say(x) for x in lines])]
     for key, systems, suffix in (("velocities", vel_systems, "/s"),
                                  ("accelerations", acc_systems, "/s^2")):
         rows = []
@@ -169,9 +178,10 @@ def _kinematics(mech, w) -> list:
                         f"  ->  {point}{chr(39) * (1 if suffix == '/s' else 2)} = "
                         f"{_xy(value, f, top)} {unit}{suffix}")
         if rows:
-            out += [Block("heading", w[key]), Block("lines", [w["system"]] + rows)]
+            out += [Block("heading", w[key]), Block("lines", [w["system"]] +
+                                                    [say(x) for x in rows])]
     if mech.loads and mech.dynamics is None and any(ld.value is None for ld in mech.loads.values()):
-        out += _statics(mech, solver, kin, w)
+        out += _statics(mech, solver, kin, w, say)
     return out
 
 
@@ -206,7 +216,7 @@ def _shown(point: str) -> str:
     return point
 
 
-def _statics(mech, solver, kin, w):
+def _statics(mech, solver, kin, w, say=str):
     from linkcli.forces.statics import coefficient
     unit_kin = solver.velocities(kin.at_rest(), np.ones_like(kin.q))
     rows = []
@@ -214,7 +224,7 @@ def _statics(mech, solver, kin, w):
         c = float(np.ravel(coefficient(mech, load, kin.pos, unit_kin.vel))[0])
         kind = mech.load_unit_kind(load)
         value = "?" if load.value is None else f"{load.value / mech.units.factor(kind):.6g}"
-        rows.append([load.name, value, f"{c:.6g}"])
+        rows.append([load.name, say(value), say(f"{c:.6g}")])
     return [Block("heading", w["statics"]),
             Block("text", "sum_i L_i c_i = 0"),
             Block("table", rows, [w["load"], w["value"], w["coefficient"]])]

@@ -21,14 +21,14 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from linkcli.errors import RegimeError
-from linkcli.forces.regime import (Cycle, Regime, balance_speed, check_balance, extreme,
-                                    regime, work)
+from linkcli.forces.regime import (Cycle, Load, Regime, at_speed, balance_speed,
+                                    check_balance, extreme, regime, work)
 
-#: the relative tolerance of the exact flywheel
-XTOL = 1e-12
+#: the relative tolerance of the exact flywheel's coefficient (above the shooting's noise)
+XTOL = 1e-9
 
 
 @dataclass(frozen=True)
@@ -52,14 +52,25 @@ def approximate(cycle: Cycle, fluctuation: float, mean_speed: float | None = Non
     w = balance_speed(cycle) if cycle.speed_dependent else mean_speed
     if not cycle.speed_dependent:
         check_balance(cycle)
-    W = work(cycle, w)
+    diagram = books_diagram(cycle, w)
+    W = work(diagram)
     q = cycle.q()
-    Wq = W(q)
-    top = extreme(cycle, W, Wq, +1)[1]
-    bottom = extreme(cycle, W, Wq, -1)[1]
-    dE = top - bottom
+
+    def torque(x):
+        return diagram.Q(x, np.full(np.shape(x), w))
+
+    dE = extreme(cycle, W, W(q), +1, torque)[1] - extreme(cycle, W, W(q), -1, torque)[1]
     own = float(np.mean(cycle.with_flywheel(0.0).J(q[:-1])))
     return dE / (w * w * fluctuation) - own, dE, w
+
+
+def books_diagram(cycle: Cycle, w: float) -> Cycle:
+    """The turning-moment diagram at the constant speed w, as the books draw it: every load
+    at w and the inertia torque of the varying J*, -1/2 dJ*/dq w^2 (the reciprocating
+    masses' inertia forces)."""
+    loads = tuple(Load(ld.name, at_speed(ld.torque, w)) for ld in cycle.loads)
+    inertia = Load("inertia", lambda q, _w: -0.5 * cycle.dJ(q) * w * w)
+    return replace(cycle, loads=loads + (inertia,))
 
 
 def flywheel(cycle: Cycle, fluctuation: float, mean_speed: float | None = None) -> Flywheel:
@@ -100,7 +111,9 @@ def _machine_alone(bare: Cycle, mean_speed):
 
 
 def _solve(bare: Cycle, fluctuation: float, mean_speed, guess: float):
-    """Brent's method on log J_f between a flywheel too light and one heavy enough."""
+    """log delta against log J_f is nearly a straight line of slope -1: the secant method
+    from the books' flywheel, Brent's method between a flywheel too light and one heavy
+    enough where the secant does not settle."""
     from scipy.optimize import brentq
 
     found = {}
@@ -110,15 +123,33 @@ def _solve(bare: Cycle, fluctuation: float, mean_speed, guess: float):
         found[log_j] = reg
         return math.log(reg.fluctuation / fluctuation)
 
-    high = math.log(guess) + 0.5
-    while gap(high) > 0:
-        high += 1.0
-    low = high - 1.0
-    while _gap_or_stop(gap, low) < 0:
-        low -= 1.0
-    root = brentq(gap, low, high, xtol=XTOL, rtol=XTOL)
+    root = _secant(gap, math.log(max(guess, 1e-300)))
+    if root is None:
+        high = math.log(max(guess, 1e-300)) + 0.5
+        while gap(high) > 0:
+            high += 1.0
+        low = high - 1.0
+        while _gap_or_stop(gap, low) < 0:
+            low -= 1.0
+        root = brentq(gap, low, high, xtol=XTOL, rtol=XTOL)
     reg = found.get(root) or regime(bare.with_flywheel(math.exp(root)), mean_speed)
     return math.exp(root), reg
+
+
+def _secant(gap, x0, steps=12):
+    """The root of gap from x0 and x0 - 0.05 by the secant method, or None."""
+    try:
+        x1, g1 = x0, gap(x0)
+        x2, g2 = x0 - 0.05 if g1 < 0 else x0 + 0.05, None
+        g2 = gap(x2)
+        for _ in range(steps):
+            if abs(g2) <= XTOL or g2 == g1 or abs(x2 - x1) <= XTOL:
+                return x2 if abs(g2) <= 10 * XTOL else None
+            x1, g1, x2 = x2, g2, x2 - g2 * (x2 - x1) / (g2 - g1)
+            g2 = gap(x2)
+    except RegimeError:
+        return None
+    return None
 
 
 def _gap_or_stop(gap, log_j):

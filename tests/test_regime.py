@@ -198,3 +198,36 @@ def test_refused_fluctuation_no_flywheel_gives():
     for bad in (0.0, -0.01, math.nan):
         with pytest.raises(RegimeError, match="positive number"):
             fw.flywheel(crankshaft(), bad, W_MEAN)
+
+
+@pytest.mark.parametrize("case", ["constant", "slider-crank"])
+def test_picture_shades_areas_that_sum_to_delta_e(case):
+    """The turning-moment diagram's darker lobes: their outlines, integrated here by the
+    trapezoidal rule, add up to DeltaE; every lobe's outline has the area it is labelled
+    with; the picture is drawn."""
+    from linkcli.pictures import regime as pr
+
+    reg = (rg.regime(crankshaft(500.0), W_MEAN) if case == "constant"
+           else rg.regime(slider_crank(flywheel=0.3)))
+    shaded = pr.lobes(reg)
+    sizing = [lobe for lobe in shaded if lobe.sizing]
+    assert sizing and len(sizing) < len(shaded)
+    total = sum(np.trapezoid(lobe.Q, lobe.q) for lobe in sizing)
+    assert total == pytest.approx(reg.energy_fluctuation, rel=1e-4)
+    for lobe in shaded:
+        assert np.trapezoid(lobe.Q, lobe.q) == pytest.approx(lobe.area, rel=1e-4)
+    assert sum(lobe.end - lobe.start for lobe in shaded) == pytest.approx(2 * math.pi)
+    fig = pr.picture(reg, ("deg", math.pi / 180, "rpm", math.pi / 30, "N m", 1.0), case)
+    assert len(fig.axes) == 2
+
+
+def test_picture_sizing_lobes_catch_a_wrong_run(monkeypatch):
+    """A planted defect: the run of lobes taken from the most energy instead of the least
+    gives areas that do not add up to DeltaE, and the check above sees it."""
+    from linkcli.pictures import regime as pr
+
+    reg = rg.regime(slider_crank(flywheel=0.3))
+    good = pr._sizing
+    monkeypatch.setattr(pr, "_sizing", lambda E, dE: good(-E, dE))
+    total = sum(np.trapezoid(lobe.Q, lobe.q) for lobe in pr.lobes(reg) if lobe.sizing)
+    assert total != pytest.approx(reg.energy_fluctuation, rel=1e-4)

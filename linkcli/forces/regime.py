@@ -356,8 +356,9 @@ def shoot(cycle: Cycle) -> Regime:
     drift = (W(cycle.start + cycle.period) - W(cycle.start)) / cycle.period
     E0 = start_energy(frozen, lambda q: W(q) - drift * (q - cycle.start), wb)
     scale, F = E0, math.inf
+    table = Tabled(cycle)
     for shots in range(1, ITERATIONS + 1):
-        end, S, sol = one_period(cycle, E0)
+        end, S, sol = one_period(cycle, E0, table)
         if sol is None:                 # it stopped within the cycle: start it faster
             E0 *= 2.0
             continue
@@ -382,18 +383,59 @@ def at_speed(torque, w):
     return lambda q, _w: torque(q, np.full(np.shape(q), w))
 
 
-def one_period(cycle: Cycle, E0: float):
+class Tabled:
+    """The cycle's J* and the sum of its speed-free loads as periodic cubic splines on the
+    grid, read one q at a time in plain floats (the shooting's right-hand side), with the
+    speed-dependent loads evaluated as given."""
+
+    def __init__(self, cycle: Cycle):
+        from scipy.interpolate import CubicSpline
+
+        q = cycle.q()
+        self.start, self.h, self.n = cycle.start, cycle.period / cycle.grid, cycle.grid
+        fixed = [ld for ld in cycle.loads if not ld.speed]
+        self.speed = [ld for ld in cycle.loads if ld.speed]
+        zero = np.zeros(q.shape)
+        Q = sum((np.broadcast_to(ld.torque(q, zero), q.shape) for ld in fixed), zero)
+        self.J = self._coefficients(CubicSpline, q, cycle.J(q))
+        self.Q = self._coefficients(CubicSpline, q, np.array(Q, dtype=float))
+
+    @staticmethod
+    def _coefficients(spline, q, y):
+        y = np.array(y, dtype=float)
+        y[-1] = y[0]
+        return spline(q, y, bc_type="periodic").c.T.tolist()
+
+    def at(self, table, q: float) -> float:
+        x = (q - self.start) / self.h
+        i = math.floor(x)
+        t = (x - i) * self.h
+        c3, c2, c1, c0 = table[i % self.n]
+        return ((c3 * t + c2) * t + c1) * t + c0
+
+    def torque(self, q: float, w: float):
+        """(Q, dQ/dw) at (q, w), the derivative by a one-sided difference."""
+        Q = self.at(self.Q, q)
+        if not self.speed:
+            return Q, 0.0
+        dw = 1e-7 * max(w, 1e-300)
+        both = sum(ld.torque(np.array([q, q]), np.array([w, w + dw])) for ld in self.speed)
+        return Q + float(both[0]), float(both[1] - both[0]) / dw
+
+
+def one_period(cycle: Cycle, E0: float, table: Tabled | None = None):
     """E and S = dE/dE0 after one period from E0 (solve_ivp in q, dense output); the
     solution None where the machine stops within the cycle (E reaches 0)."""
     from scipy.integrate import solve_ivp
 
+    table = Tabled(cycle) if table is None else table
+
     def rhs(q, y):
         E, S = y
-        J = float(cycle.J(np.array([q]))[0])
+        J = table.at(table.J, q)
         w = math.sqrt(2.0 * max(E, 0.0) / J)
-        Qw = cycle.Q(np.array([q, q, q]), np.array([w, w * (1 + 1e-6), w * (1 - 1e-6)]))
-        dQdw = (Qw[1] - Qw[2]) / (2e-6 * w) if w > 0 else 0.0
-        return [Qw[0], dQdw * S / (J * w) if w > 0 else 0.0]
+        Q, dQdw = table.torque(q, w)
+        return [Q, dQdw * S / (J * w) if w > 0 else 0.0]
 
     def stops(q, y):
         return y[0]

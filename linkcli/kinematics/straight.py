@@ -59,18 +59,52 @@ class Straight:
     ``scalar(q, qd, qdd)``: a tuple of the probes' values at one position (numbers, SI
     driver values), None where a check fails; ``array(q, qd, qdd)``: a (probes x positions)
     table for a 1-D array ``q`` (``qd``, ``qdd`` numbers or arrays like it), None likewise.
+    Each is written at its first call.
     """
 
-    __slots__ = ("scalar", "array", "order", "size")
+    __slots__ = ("scalar", "array", "order", "size", "_plan")
 
-    def __init__(self, scalar, array, order, size):
-        self.scalar, self.array, self.order, self.size = scalar, array, order, size
+    def __init__(self, program, rows, order):
+        self.order, self.size, self._plan = order, len(rows), (program, rows)
+        self.scalar = self._first_scalar
+        self.array = self._first_array
+
+    def function(self, array: bool):
+        """The function of the array (or the scalar) version, written now if not yet; its
+        source is its ``__source__``, its constants its ``__constants__``."""
+        if array:
+            if self.array == self._first_array:
+                self.array = self._written(True)
+            return self.array
+        if self.scalar == self._first_scalar:
+            self.scalar = self._written(False)
+        return self.scalar
+
+    def _first_scalar(self, q, w, al):
+        self.scalar = self._written(False)
+        return self.scalar(q, w, al)
+
+    def _first_array(self, q, w, al):
+        self.array = self._written(True)
+        return self.array(q, w, al)
+
+    def _written(self, array):
+        """The function of the version asked; one that answers None where the program
+        cannot be written (a check that fails whatever the position)."""
+        try:
+            return _build(*self._plan, self.order, array)
+        except _Unwritable:
+            return _none
+
+
+def _none(q, w, al):
+    return None
 
 
 def straight_of(solver, probes, order) -> Straight | None:
     """The :class:`Straight` of ``solver`` for ``probes`` = [(kind, a, b, order, factor,
     signed)] (``compiled.Program.probes``' rows, point names), None where its groups are not
-    all of the compiled loop's kinds or a constant is not finite."""
+    all of the compiled loop's kinds."""
     program = program_of(solver)
     if program is None:
         return None
@@ -79,11 +113,7 @@ def straight_of(solver, probes, order) -> Straight | None:
         return None
     rows = [(kind, index[a], None if b is None else index[b], rate, factor, signed)
             for kind, a, b, rate, factor, signed in probes]
-    try:
-        functions = [_build(program, rows, order, array) for array in (False, True)]
-    except _Unwritable:
-        return None
-    return Straight(*functions, order, len(probes))
+    return Straight(program, rows, order)
 
 
 def evaluator(solver, probes, order=None):
@@ -110,6 +140,8 @@ class _Writer:
         self.lines: list = []
         self.memo: dict = {}
         self.count = 0
+        self.constants: list = []       # the value of each c<i> of the source
+        self.named: dict = {}           # repr of a constant -> its name
         self.bounds: dict = {}          # variable -> a bound of its magnitude, where known
 
     def emit(self, line: str):
@@ -123,13 +155,20 @@ class _Writer:
             self.emit(f"{got} = {expr}")
         return got
 
-    @staticmethod
-    def text(x) -> str:
+    def text(self, x) -> str:
+        """A variable's name, or a constant as a name c<i> of its own (its value passed
+        when the function is made: the source depends on the mechanism's structure only,
+        and mechanisms of one structure share it)."""
         if isinstance(x, str):
             return x
         if not math.isfinite(x):
             raise _Unwritable(x)
-        return repr(float(x)) if x >= 0 else f"({float(x)!r})"
+        key = repr(float(x))
+        name = self.named.get(key)
+        if name is None:
+            name = self.named[key] = f"c{len(self.constants)}"
+            self.constants.append(float(x))
+        return name
 
     def fresh(self, expr: str) -> str:
         """A variable of its own (changed in place after), never shared."""
@@ -255,31 +294,48 @@ def _build(program, probes, order, array):
         out.emit("return values")
     lines = _live(out.lines)
     lines = _freed(lines) if array else lines
-    source = "def solve(q, w, al):\n" + "\n".join(lines) + "\n"
-    namespace = dict(_ARRAY if array else _SCALAR)
-    namespace.update(isfinite=math.isfinite, empty=np.empty, TWO_PI=TWO_PI, WRAP=WRAP,
-                     pi=math.pi, copyto=np.copyto, add=np.add, subtract=np.subtract)
-    exec(compile(source, "<linkcli straight-line solve>", "exec"), namespace)   # noqa: S102
-    function = namespace["solve"]
-    function.__source__ = source
+    names = ", ".join(f"c{i}" for i in range(len(out.constants)))
+    source = f"def make({names}):\n    def solve(q, w, al):\n" + \
+        "\n".join("    " + line for line in lines) + "\n    return solve\n"
+    make = _MADE.get((source, array))
+    if make is None:
+        namespace = dict(_ARRAY if array else _SCALAR)
+        namespace.update(isfinite=math.isfinite, empty=np.empty, TWO_PI=TWO_PI, WRAP=WRAP,
+                         pi=math.pi, copyto=np.copyto, add=np.add, subtract=np.subtract)
+        exec(compile(source, "<linkcli straight-line solve>", "exec"), namespace)  # noqa: S102
+        make = namespace["make"]
+        make.__source__ = source
+        if len(_MADE) >= KEPT:
+            _MADE.pop(next(iter(_MADE)))
+        _MADE[(source, array)] = make
+    function = make(*out.constants)
+    function.__source__ = make.__source__
+    function.__constants__ = tuple(out.constants)
     return function
 
 
+#: the functions made from each source (mechanisms of one structure share theirs), the
+#: KEPT last written
+_MADE: dict = {}
+KEPT = 256
+
+
 def _live(lines) -> list:
-    """``lines`` without the assignments no other line reads (a rate system's second
-    column where its right-hand side is 0), and without a check written twice."""
-    lines = list(dict.fromkeys(lines))      # the same line twice: a repeated check
-    while True:
-        read = {}
-        for line in lines:
-            for name in _NAME.findall(line.split(" = ", 1)[1] if _ASSIGN.match(line)
-                                      else line):
-                read[name] = True
-        kept = [line for line in lines if not _ASSIGN.match(line)
-                or _ASSIGN.match(line).group(1) in read]
-        if len(kept) == len(lines):
-            return kept
-        lines = kept
+    """``lines`` without the assignments no later line reads (a rate system's second
+    column where its right-hand side is 0), and without a check written twice; one pass
+    from the end (each variable is assigned once)."""
+    read, kept = set(), []
+    for line in reversed(list(dict.fromkeys(lines))):     # a repeated check: once
+        match = _ASSIGN.match(line)
+        if match is not None:
+            if match.group(1) not in read:
+                continue
+            line_reads = line.split(" = ", 1)[1]
+        else:
+            line_reads = line
+        read.update(_NAME.findall(line_reads))
+        kept.append(line)
+    return kept[::-1]
 
 
 def _freed(lines) -> list:
@@ -287,15 +343,16 @@ def _freed(lines) -> list:
     temporaries of a long array do not all stay alive to the end."""
     last = {}
     for i, line in enumerate(lines):
-        for name in _NAME.findall(line.split("=", 1)[1] if " = " in line else line):
+        for name in _NAME.findall(line.split(" = ", 1)[1] if _ASSIGN.match(line) else line):
             last[name] = i
+    dead: dict = {}
+    for name, i in last.items():
+        dead.setdefault(i, []).append(name)
     out = []
     for i, line in enumerate(lines):
         out.append(line)
-        dead = sorted(n for n, at in last.items() if at == i and not line.lstrip()
-                      .startswith("return"))
-        if dead and "return" not in line:
-            out.append("    del " + ", ".join(dead))
+        if i in dead and "return" not in line:
+            out.append("    del " + ", ".join(sorted(dead[i])))
     return out
 
 

@@ -196,7 +196,8 @@ class Plan:
             self.probes += [(axis, p, None, 0, f, False) for p, _, f in self.points
                             for axis in (X_PROBE, Y_PROBE)]
         self._program = False           # (program, probes) built at the first compiled call
-        self._straight = False          # the straight-line solve, built at the first call
+        self._straight = False          # the straight-line solve (at the second call)
+        self._called = False
 
     def order(self, mech) -> int:
         """The highest order of rates the names need (checked at the first call)."""
@@ -236,10 +237,16 @@ class Plan:
             result.cautions = figure_cautions(mech, self.method, self.tol) + result.cautions
         return result
 
-    def _straight_of(self, solver, order):
+    def _straight_of(self, solver, order, now=False):
         """The straight-line solve of these names (``kinematics.straight``), None where it
-        cannot express them (worked out at the first call)."""
+        cannot express them; worked out at the second call (or ``now``): writing it costs
+        about a millisecond, the time of a few calls by the general path, which a file
+        solved once (a command, a trial of a design question, a value of a parameter
+        sweep) would not win back."""
         if self._straight is False:
+            if not now and not self._called:
+                self._called = True
+                return None
             self._straight = straight_of(solver, self.probes, order) \
                 if self.probes is not None and self.method == "closed" else None
         return self._straight
@@ -306,7 +313,7 @@ class Plan:
             return None
         table = np.empty((len(self.names), qs.size))
 
-        straight = self._straight_of(solver, order)
+        straight = self._straight_of(solver, order, now=True)
 
         def solve(lo):
             hi = min(qs.size, lo + BLOCK)

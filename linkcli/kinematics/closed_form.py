@@ -263,6 +263,17 @@ class Solver:
                                      "sine of the angle between its constraint directions")
 
 
+def unit_rates(solver, kin: Kinematics, j: int = 0) -> Kinematics:
+    """The velocities at ``kin``'s positions for a unit rate of coordinate ``j`` and the
+    others at rest: dP/dq_j, the virtual-power coefficients of driver j (any solver)."""
+    one = np.ones(kin.shape)
+    n = len(solver.mech.coordinates)
+    if n == 1:
+        return solver.velocities(kin.at_rest(), one)
+    return solver.velocities(kin.at_rest(), tuple(one if i == j else 0.0 * one
+                                                  for i in range(n)))
+
+
 def _guide_of(c, pos, q, turns=None):
     """(B, C, value) of a dyad's line: a guide's points, or a contact's line (Track)."""
     if isinstance(c, Track):

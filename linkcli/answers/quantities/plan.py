@@ -104,7 +104,7 @@ def report_names(mech):
 
 def require_driver(mech, what: str) -> None:
     """Refuse a request that varies the driver on a file declared with coordinates."""
-    if mech.elements is not None or len(mech.coordinates) > 1:
+    if mech.elements is not None:
         raise InputError(f"{what} varies the driver, and this file declares coordinates "
                          "(a vibration problem) instead", file=mech.file,
                          hint="use 'linkcli solve', 'linkcli sweep --vary NAME=FROM:TO:STEPS' "
@@ -207,15 +207,16 @@ class Plan:
         names need, refusing unassembled and singular positions, and evaluate them."""
         solver = solver_for(mech, self.method, self.tol)
         order = self.order(mech)
-        driver = self._driver_si(mech.driver, q, qdot, qddot)
-        if q is not None and self.probes is not None and np.size(q) <= COMPILED_MOST \
+        driver = self._driver_si(mech, q, qdot, qddot)
+        single = len(mech.coordinates) == 1
+        if single and q is not None and self.probes is not None and np.size(q) <= COMPILED_MOST \
                 and compiled() is not None:
             result = self._compiled(mech, solver, order, *driver)
             if result is not None:
                 return result
         if q is not None and np.size(q) >= LONG:
             keep_freed_memory()
-        if q is not None and np.size(q) > BLOCK and self._blockwise:
+        if single and q is not None and np.size(q) > BLOCK and self._blockwise:
             result = self._in_blocks(mech, solver, order, *driver)
             if result is not None:
                 return result
@@ -233,12 +234,16 @@ class Plan:
         return self.method == "closed" and not self.generic and not self.wants_loads \
             and not self.points
 
-    def _driver_si(self, driver, q, qdot, qddot) -> tuple:
-        """(q, q', q'') in SI from display units, the file's values where not given."""
+    def _driver_si(self, mech, q, qdot, qddot) -> tuple:
+        """(q, q', q'') in SI from display units, the file's values where not given.  With
+        several drivers each is a tuple over them: ``q`` and its rates are the first
+        driver's, the others' are the file's (``drive``)."""
         f0, f1, f2 = self.q_factors
-        return (driver.value if q is None else np.asarray(q, float) * f0,
-                driver.rate if qdot is None else np.asarray(qdot, float) * f1,
-                driver.accel if qddot is None else np.asarray(qddot, float) * f2)
+        driver = mech.driver
+        first = (driver.value if q is None else np.asarray(q, float) * f0,
+                 driver.rate if qdot is None else np.asarray(qdot, float) * f1,
+                 driver.accel if qddot is None else np.asarray(qddot, float) * f2)
+        return first if len(mech.coordinates) == 1 else drive(mech, *first)
 
     def _in_blocks(self, mech, solver, order, qs, qd, qdd):
         """:meth:`evaluate` of a long 1-D array of driver values, BLOCK positions at a time:
@@ -361,6 +366,16 @@ class Later:
             solver, qd, qdd, order = self._solve
             self._kin = solved(solver, order, self.q, qd, qdd)
         return getattr(self._kin, name)
+
+
+def drive(mech, q, qd, qdd) -> tuple:
+    """Every driver's (values, rates, accelerations) in SI, each a tuple in the order of
+    ``drivers:``: the first driver's from ``q``, ``qd``, ``qdd`` (arrays or numbers), the
+    others' the file's, broadcast to them."""
+    others = mech.coordinates[1:]
+    return ((q,) + tuple(d.value + 0 * np.asarray(q, float) for d in others),
+            (qd,) + tuple(d.rate + 0 * np.asarray(qd, float) for d in others),
+            (qdd,) + tuple(d.accel + 0 * np.asarray(qdd, float) for d in others))
 
 
 def solved(solver, order, q, qd, qdd):

@@ -241,6 +241,12 @@ class Solver:
         return g1, g2, r1, r2, solved
 
     # failures ------------------------------------------------------------------
+    def _where(self, kin: Kinematics):
+        """The driver values a refusal names: q, or every driver's (a tuple) when the file
+        has several."""
+        several = self.n > 1 and self.mech.elements is None
+        return tuple(kin.coords) if several else kin.q
+
     def check(self, kin: Kinematics, velocities: bool):
         """Raise when a group cannot be assembled or (for rates) is singular."""
         for index, short in kin.short.items():
@@ -252,13 +258,14 @@ class Solver:
                 worst = float(np.max(np.where(bad, short, 0.0)))
                 reason = "the links are parallel" if not np.isfinite(worst) else \
                     f"the links fall short by {length_text(self.mech, worst)}"
-                raise assembly_error(self.mech, self.groups[index], kin.q, bad, worst, reason)
+                raise assembly_error(self.mech, self.groups[index], self._where(kin), bad,
+                                     worst, reason)
         if not velocities:
             return
         for index, measure in kin.measure.items():
             if under(measure, SINGULAR):
                 bad = measure < SINGULAR
-                raise singular_error(self.mech, self.groups[index], kin.q,
+                raise singular_error(self.mech, self.groups[index], self._where(kin),
                                      np.broadcast_to(bad, kin.shape), measure,
                                      "sine of the angle between its constraint directions")
 

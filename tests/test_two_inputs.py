@@ -164,3 +164,79 @@ def test_driver_and_drivers_together_are_refused(tmp_path):
     path.write_text(FOURBAR + "driver: {angle: [O, A], value: 90}\n", encoding="utf-8")
     code, _, err = run(["solve", str(path)])
     assert code == 2 and "key 'drivers'" in err and "not both 'driver' and 'drivers'" in err
+
+
+# --- sweeps over one driver ---------------------------------------------------------------
+def _csv(args):
+    code, out, err = run(args + ["--format", "csv", "--decimals", "9"])
+    assert code == 0, err
+    lines = out.splitlines()
+    names = [h.split(" [")[0] for h in lines[0].split(",")]
+    return [dict(zip(names, map(float, line.split(",")))) for line in lines[1:]]
+
+
+def test_a_tied_sweep_row_is_the_file_solved_with_the_tie_written_in(tmp_path):
+    """phi2 = 150 - phi1: at phi1 = 80 deg the row is the file with phi2 = 70 deg, its rate
+    -phi1' = -10 rad/s and its acceleration -phi1'' = 0 (the chain rule)."""
+    path = os.path.join(DATA, "five-bar.yaml")
+    names = "xB,yB,theta3dot,xBddot"
+    row = _csv(["sweep", path, "--from", "80", "--to", "80", "--steps", "1", "--names", names,
+                "--tie", "phi2=150-phi1"])[0]
+    with open(path, encoding="utf-8") as handle:
+        text = handle.read()
+    old = "phi1: {angle: [O, A], value: 90, rate: 10, accel: 0}\n  phi2: {angle: [D, C], " \
+        "value: 60, rate: -5, accel: 3}"
+    assert old in text
+    tied = tmp_path / "tied.yaml"
+    tied.write_text(text.replace(old, "phi1: {angle: [O, A], value: 80, rate: 10, accel: 0}\n"
+                                      "  phi2: {angle: [D, C], value: 70, rate: -10, accel: 0}"),
+                    encoding="utf-8")
+    code, out, err = run(["solve", str(tied), "--format", "csv", "--decimals", "9"])
+    assert code == 0, err
+    solved = {line.split(",")[0]: float(line.split(",")[1]) for line in out.splitlines()[1:]}
+    for name in names.split(","):
+        assert row[name] == pytest.approx(solved[name], rel=1e-9, abs=1e-9)
+
+
+def test_a_sweep_over_the_second_driver_passes_the_files_position():
+    path = os.path.join(DATA, "five-bar.yaml")
+    rows = _csv(["sweep", path, "--from", "50", "--to", "70", "--steps", "2", "--driver",
+                 "phi2", "--names", "xB,yBdot"])
+    code, out, err = run(["solve", path, "--format", "csv", "--decimals", "9"])
+    solved = {line.split(",")[0]: float(line.split(",")[1]) for line in out.splitlines()[1:]}
+    assert [r["q"] for r in rows] == [50, 60, 70]
+    assert rows[1]["xB"] == pytest.approx(solved["xB"], rel=1e-9)
+    assert rows[1]["yBdot"] == pytest.approx(solved["yBdot"], rel=1e-9)
+    assert rows[0]["xB"] != pytest.approx(rows[2]["xB"])      # the second driver moves B
+
+
+@pytest.mark.parametrize("option, words", [
+    (["--tie", "phi1=2*phi1"], "a tie sets a driver other than the first"),
+    (["--tie", "phi2=2*x"], "reads x; a tie is an expression of the swept driver phi1"),
+    (["--tie", "phi2"], "expected NAME=EXPR"),
+    (["--driver", "psi"], "--driver psi: not a driver of this file; its drivers: phi1, phi2"),
+])
+def test_sweep_options_of_several_drivers_refused_by_name(option, words):
+    code, _, err = run(["sweep", os.path.join(DATA, "five-bar.yaml"), "--from", "80", "--to",
+                        "90", "--steps", "1"] + option)
+    assert code == 2 and words in err
+
+
+def test_a_ties_rates_are_its_derivatives_along_the_motion():
+    """q2 = f(q1) with f nonlinear: the tied driver's rate and acceleration against central
+    differences of its value along q1(t) = q1 + q1' t + q1'' t^2 / 2 (SI)."""
+    from linkcli.answers.quantities.drive import Drive
+    mech = model("five-bar.yaml")
+    drive = Drive(mech, {"phi2": "60 + 0.01*(phi1 - 90)**2 + 5*sin(phi1*deg)"})
+    q0, w, a = np.radians(85.0), 7.0, -3.0
+
+    def at(t):
+        return drive(q0 + w * t + 0.5 * a * t * t, w + a * t, a)
+
+    h = 1e-5
+    (_, q2), (_, r2), (_, a2) = at(0.0)
+    plus, minus = at(h), at(-h)
+    assert r2 == pytest.approx((plus[0][1] - minus[0][1]) / (2 * h), rel=1e-7)
+    assert a2 == pytest.approx((plus[1][1] - minus[1][1]) / (2 * h), rel=1e-6)
+    expected = np.radians(60 + 0.01 * (85 - 90) ** 2 + 5 * np.sin(np.radians(85)))
+    assert q2 == pytest.approx(expected, rel=1e-12)

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.answers.memory import LONG, keep_freed_memory
+from linkcli.answers.quantities.drive import Drive
 from linkcli.answers.quantities.forces import JOINT_FORCES, force_value, loads_at
 from linkcli.answers.quantities.geometry import override_unit, signed_angle, vector, \
     wrap_angle
@@ -237,13 +238,13 @@ class Plan:
     def _driver_si(self, mech, q, qdot, qddot) -> tuple:
         """(q, q', q'') in SI from display units, the file's values where not given.  With
         several drivers each is a tuple over them: ``q`` and its rates are the first
-        driver's, the others' are the file's (``drive``)."""
+        driver's, the others' are the file's (``Drive``)."""
         f0, f1, f2 = self.q_factors
         driver = mech.driver
         first = (driver.value if q is None else np.asarray(q, float) * f0,
                  driver.rate if qdot is None else np.asarray(qdot, float) * f1,
                  driver.accel if qddot is None else np.asarray(qddot, float) * f2)
-        return first if len(mech.coordinates) == 1 else drive(mech, *first)
+        return Drive(mech)(*first)
 
     def _in_blocks(self, mech, solver, order, qs, qd, qdd):
         """:meth:`evaluate` of a long 1-D array of driver values, BLOCK positions at a time:
@@ -366,16 +367,6 @@ class Later:
             solver, qd, qdd, order = self._solve
             self._kin = solved(solver, order, self.q, qd, qdd)
         return getattr(self._kin, name)
-
-
-def drive(mech, q, qd, qdd) -> tuple:
-    """Every driver's (values, rates, accelerations) in SI, each a tuple in the order of
-    ``drivers:``: the first driver's from ``q``, ``qd``, ``qdd`` (arrays or numbers), the
-    others' the file's, broadcast to them."""
-    others = mech.coordinates[1:]
-    return ((q,) + tuple(d.value + 0 * np.asarray(q, float) for d in others),
-            (qd,) + tuple(d.rate + 0 * np.asarray(qd, float) for d in others),
-            (qdd,) + tuple(d.accel + 0 * np.asarray(qdd, float) for d in others))
 
 
 def solved(solver, order, q, qd, qdd):

@@ -143,7 +143,7 @@ def test_two_drivers_on_one_degree_of_freedom_are_named_with_the_count(tmp_path)
     path.write_text(FOURBAR, encoding="utf-8")
     code, _, err = run(["solve", str(path)])
     assert code == 3
-    assert "the mechanism has 1 degrees of freedom, not 2 (the drivers phi: angle of O->A, " \
+    assert "the mechanism has 1 degree of freedom, not 2 (the drivers phi: angle of O->A, " \
         "psi: angle of D->B)" in err
     assert "n = 3(m - 1) - 2R - 2P = 3(4 - 1) - 2*4 - 2*0 = 1" in err
     assert "drive 1 of the coordinates" in err

@@ -127,7 +127,8 @@ def one_dof(mech: Mechanism) -> Grubler:
     elif count.dof > n:
         hint += "; a vibration problem declares one coordinate per degree of freedom under " \
             "'coordinates:'"
-    raise MobilityError(f"the mechanism has {count.dof} degrees of freedom, not {declared}: "
+    raise MobilityError(f"the mechanism has {count.dof} degree{'' if count.dof == 1 else 's'} "
+                        f"of freedom, not {declared}: "
                         f"{count.formula()}", file=mech.file, hint=hint)
 
 

@@ -26,6 +26,7 @@ from linkcli.runs.sheet import evaluate
 from linkcli.texts.data import data_lines
 from linkcli.exports.text import fence, markdown, refuse_unfit, visible
 from linkcli.input.document import build
+from linkcli.kinematics.closed_form import unit_rates
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import REPORT_SECTIONS
 from linkcli.model.rounding import noise_free
@@ -218,7 +219,7 @@ def _shown(point: str) -> str:
 
 def _statics(mech, solver, kin, w, say=str):
     from linkcli.forces.statics import coefficient
-    unit_kin = solver.velocities(kin.at_rest(), np.ones_like(kin.q))
+    unit_kin = unit_rates(solver, kin)
     rows = []
     for load in mech.loads.values():
         c = float(np.ravel(coefficient(mech, load, kin.pos, unit_kin.vel))[0])

@@ -199,6 +199,10 @@ class Sites:
         self.kinds: dict = {}
         self.unknown: list = []
         driver = data.get("driver") if isinstance(data.get("driver"), dict) else None
+        drivers = [d for d in (data.get("drivers") or {}).values() if isinstance(d, dict)] \
+            if isinstance(data.get("drivers"), dict) else []
+        if driver is None and drivers:      # several drivers: the first is q
+            driver = drivers[0]
         self.driver_base = None
         if driver is not None:
             self.driver_base = "angle" if "angle" in driver else "length"
@@ -346,13 +350,19 @@ class Sites:
         if isinstance(value, dict):
             self._only(value, path, {"disc": NAME, "radius": "length", "side": NAME})
 
-    def _driver(self, value, path):
-        base = self.driver_base
+    def _driver(self, value, path, base=None):
+        base = base or self.driver_base
         self._only(value, path, {"angle": NAME, "length": NAME, "x": NAME, "y": NAME,
                                  "value": base,
                                  "rate": "angular_rate" if base == "angle" else "length_rate",
                                  "accel": "angular_accel" if base == "angle"
                                  else "length_accel"})
+
+    def _drivers(self, value, path):
+        """Each named driver as ``driver:``, in the unit of its own kind."""
+        for name, spec in self.items(value, path):
+            base = "angle" if isinstance(spec, dict) and "angle" in spec else "length"
+            self._driver(spec, path + (name,), base)
 
     def _coordinates(self, value, path):
         for name, spec in self.items(value, path):
@@ -772,7 +782,7 @@ class Rename:
         already has (with a point's derived names ``xP``, ``yP``)."""
         taken = set()
         for section in ("params", "quantities", "loads", "sliders", "actuators", "springs",
-                        "dampers", "rolling", "cords", "coordinates"):
+                        "dampers", "rolling", "cords", "coordinates", "drivers"):
             if isinstance(self.data.get(section), dict):
                 taken |= set(self.data[section])
         new = set(self.points.values()) | set(self.links.values())
@@ -797,6 +807,7 @@ class Rename:
         """A name of an answer: ``xB``, ``yBddot`` of a point renamed with it; others kept."""
         if not isinstance(name, str) or name in (self.data.get("quantities") or {}) \
                 or name in (self.data.get("loads") or {}) \
+                or name in (self.data.get("drivers") or {}) \
                 or name in (self.data.get("params") or {}):
             return name
         m = re.fullmatch(r"([xy])(.+?)((?:d)?dot)?", name)
@@ -882,8 +893,9 @@ class Rename:
             spec = d.get(section)
             if isinstance(spec, dict):
                 self.coordinate(spec)
-        for spec in (d.get("coordinates") or {}).values():
-            self.coordinate(spec)
+        for section in ("coordinates", "drivers"):
+            for spec in (d.get(section) or {}).values():
+                self.coordinate(spec)
         for spec in (d.get("loads") or {}).values():
             if "at" in spec:
                 spec["at"] = P(spec["at"])

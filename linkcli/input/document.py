@@ -38,7 +38,8 @@ from linkcli.input.reader import (NAME, UNKNOWN, InputErrors, Reader, _kind, _Sk
                                   reserved_parameter)
 
 TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points", "links",
-            "actuators", "sliders", "driver", "coordinates", "loads", "quantities", "report",
+            "actuators", "sliders", "driver", "drivers", "coordinates", "loads", "quantities",
+            "report",
             "keys", "dynamics", "springs", "dampers", "excitation", "initial", "equilibrium",
             "rolling", "cords", "statement", "quiz", "find", "gears"}
 VIBRATION_KEYS = ("springs", "dampers", "excitation", "initial", "equilibrium")
@@ -75,15 +76,16 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
         rolling = self.block(self.contacts, data, units, pool, bodies, fixed, moving) or {}
         coordinates = ()
         self.file_units = units
+        self.inputs_declared(data)
         if "coordinates" in data:
-            if "driver" in data:
-                self.error(("driver",), "a file has either a driver (one degree of freedom, "
-                           "with its rates) or coordinates (vibrations), not both",
-                           hint="remove one of 'driver' and 'coordinates'")
             coordinates = self.block(self.coordinates, data, units, pool, fixed, moving) or ()
             driver = coordinates[0] if coordinates else None
         else:
-            driver = self.block(self.driver, data, units, pool, actuators)
+            if "drivers" in data:
+                coordinates = self.block(self.drivers, data, units, pool) or ()
+                driver = coordinates[0] if coordinates else None
+            else:
+                driver = self.block(self.driver, data, units, pool, actuators)
             for key in VIBRATION_KEYS:
                 if key in data:
                     self.error((key,), f"'{key}' belongs to a vibration problem, which declares "
@@ -91,10 +93,12 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
                                "e.g. coordinates: {theta: {angle: [O, A]}}")
         loads = self.block(self.loads, data, units, pool, bodies, actuators, driver,
                            "coordinates" not in data) or {}
-        self.vibration = {"coordinates": {c.name for c in coordinates},
+        self.vibration = {"coordinates": {c.name for c in coordinates}
+                          if "coordinates" in data else set(),
                           "springs": self.element_names(data, "springs"),
                           "dampers": self.element_names(data, "dampers")}
-        quantities = self.block(self.quantities, data, pool, loads, driver) or {}
+        quantities = self.block(self.quantities, data, pool, loads, driver,
+                                coordinates if "drivers" in data else ()) or {}
         design = self.block(self.find, data, quantities)
         report = self.block(self.report, data, quantities, loads, pool) or {}
         if design is not None:
@@ -116,7 +120,7 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
                          gears=self.gear_table)
         if "dynamics" in data:
             mech.dynamics = DynamicsReader(self, mech, _Skip).run(data["dynamics"])
-        if coordinates:       # after the dynamics: an element may name a rolling disc
+        if "coordinates" in data:   # after the dynamics: an element may name a rolling disc
             mech.elements = ElementsReader(self, mech, _Skip).run(data)
             for load in loads.values():
                 if load.kind == "driver":
@@ -130,6 +134,16 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
         if self.errors:
             raise InputErrors(self.errors)
         return mech
+
+    def inputs_declared(self, data) -> None:
+        """A file declares its inputs once: ``driver`` (one), ``drivers`` (several, each
+        driven) or ``coordinates`` (a vibration problem's)."""
+        given = [k for k in ("driver", "drivers", "coordinates") if k in data]
+        if len(given) > 1:
+            self.error((given[1],), f"a file has one of 'driver' (one degree of freedom), "
+                       f"'drivers' (several, each with its rates) and 'coordinates' "
+                       f"(vibrations), not both '{given[0]}' and '{given[1]}'",
+                       hint=f"remove one of '{given[0]}' and '{given[1]}'")
 
     def statement(self, data) -> str:
         value = data.get("statement", "")

@@ -144,14 +144,14 @@ def _kinematics(mech, w, say=str) -> list:
     """Closure, velocity and acceleration systems of each group, and the statics, each line
     written by ``say`` (``_language``)."""
     solver = solver_for(mech)
-    d = mech.driver
+    value, rate, accel = mech.inputs
     unit, f = mech.units.display("length", 0)
-    kin = solver.positions(d.value)
+    kin = solver.positions(value)
     solver.check(kin, velocities=False)
-    solver.velocities(kin, d.rate)
+    solver.velocities(kin, rate)
     solver.check(kin, velocities=True)
     vel_systems = _systems(solver, kin, 1)
-    solver.accelerations(kin, d.accel, keep=True)
+    solver.accelerations(kin, accel, keep=True)
     acc_systems = _systems(solver, kin, 2)
     kin.linear.clear()
     lines = []

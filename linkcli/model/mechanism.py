@@ -370,6 +370,15 @@ class Mechanism:
         figure = {**self.fixed, **self.moving}
         return [figure[p] for p in self.points]
 
+    @property
+    def inputs(self) -> tuple:
+        """(values, rates, accelerations) of the file's own position as the solvers take
+        them: numbers for one driver (or coordinate), tuples over them for several."""
+        cs = self.coordinates
+        if len(cs) == 1:
+            return cs[0].value, cs[0].rate, cs[0].accel
+        return tuple(tuple(getattr(c, a) for c in cs) for a in ("value", "rate", "accel"))
+
     def unknown_load(self) -> Load:
         load = next((load for load in self.loads.values() if load.value is None), None)
         if load is None:

@@ -31,24 +31,35 @@ def _coordinate_value(w, d) -> str:
 
 
 def _motion(w) -> list:
+    """The driver's line; with several drivers, a line for each by its name."""
     mech = w.mech
     if mech.elements is not None:
         return _coordinates(w)
-    d = mech.driver
+    if len(mech.coordinates) == 1:
+        return [_driver_line(w, mech.driver, "q")]
+    return [_driver_line(w, d, d.name) for d in mech.coordinates]
+
+
+def _driver_line(w, d, name) -> str:
+    """'driver: q = angle of O->A = 30 deg, q' = 2 rad/s (counter-clockwise), q'' = ...',
+    the driver called ``name``."""
+    mech = w.mech
     base = d.base
     rate_unit, rate_f = w.units.display(base, 1)
     acc_unit, acc_f = w.units.display(base, 2)
-    text = w.w["driver"].format(what=_what(w, d), value=_coordinate_value(w, d))
+    text = w.w["driver"].format(q=name, what=_what(w, d), value=_coordinate_value(w, d))
     sense = ""
     if d.rate:
         words = ("ccw", "cw") if d.kind == "angle" else ("longer", "shorter") \
             if d.kind == "length" else (None, None)
         word = words[0] if d.rate > 0 else words[1]
         sense = f" ({w.w[word]})" if word else ""
-    text += ", " + w.w["rate"].format(rate=f"{w.num(d.rate / rate_f)} {rate_unit}") + sense
+    text += ", " + w.w["rate"].format(q=name, rate=f"{w.num(d.rate / rate_f)} {rate_unit}") \
+        + sense
     if d.accel or mech.report.get("acceleration") or mech.dynamics is not None:
-        text += ", " + w.w["accel"].format(accel=f"{w.num(d.accel / acc_f)} {acc_unit}")
-    return [text]
+        text += ", " + w.w["accel"].format(q=name,
+                                           accel=f"{w.num(d.accel / acc_f)} {acc_unit}")
+    return text
 
 
 def _coordinates(w) -> list:

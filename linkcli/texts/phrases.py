@@ -92,9 +92,9 @@ PHRASES = {
         "{side} lungo {dir}, fino al disco {other} (centro {t}, raggio {R}), sulla sua "
         "{oside}",
     ),
-    "driver": ("driver: q = {what} = {value}", "movente: q = {what} = {value}"),
-    "rate": ("q' = {rate}", "q' = {rate}"),
-    "accel": ("q'' = {accel}", "q'' = {accel}"),
+    "driver": ("driver: {q} = {what} = {value}", "movente: {q} = {what} = {value}"),
+    "rate": ("{q}' = {rate}", "{q}' = {rate}"),
+    "accel": ("{q}'' = {accel}", "{q}'' = {accel}"),
     "ccw": ("counter-clockwise", "antiorario"),
     "cw": ("clockwise", "orario"),
     "longer": ("lengthening", "in allungamento"),

@@ -96,13 +96,14 @@ def _load(w, load) -> str:
         key = "unknown_axial" if load.value is None else "axial"
         value = None if load.value is None else w.amount(load.value, "force")
         return w.w[key].format(name=load.name, value=value, on=load.target)
-    d = mech.driver
+    d = next((c for c in mech.coordinates if c.name == load.target), mech.driver)
+    q = "q" if len(mech.coordinates) == 1 else d.name     # several drivers: the one it is on
     what = w.w["q_torque"] if d.kind == "angle" else w.w["q_actuator"] \
-        if d.kind == "length" and _actuator_of(mech, d) else w.w["q_force"]
+        if d.kind == "length" and _actuator_of(mech, d) else w.w["q_force"].format(q=q)
     if load.value is None:
-        return w.w["driver_load"].format(name=load.name, what=what)
+        return w.w["driver_load"].format(name=load.name, what=what, q=q)
     return w.w["driver_load_known"].format(
-        name=load.name, what=what, value=w.amount(load.value, mech.load_unit_kind(load)))
+        name=load.name, what=what, q=q, value=w.amount(load.value, mech.load_unit_kind(load)))
 
 
 def _actuator_of(mech, d) -> bool:

@@ -140,15 +140,16 @@ PHRASES = {
         "incognita",
     ),
     "driver_load": (
-        "{name}: the generalised force on q ({what}), unknown",
-        "{name}: la forza generalizzata su q ({what}), incognita",
+        "{name}: the generalised force on {q} ({what}), unknown",
+        "{name}: la forza generalizzata su {q} ({what}), incognita",
     ),
     "driver_load_known": (
-        "{name} = {value}: the generalised force on q ({what})",
-        "{name} = {value}: la forza generalizzata su q ({what})",
+        "{name} = {value}: the generalised force on {q} ({what})",
+        "{name} = {value}: la forza generalizzata su {q} ({what})",
     ),
     "q_torque": ("a torque, positive counter-clockwise", "una coppia, positiva antioraria"),
-    "q_force": ("a force, positive where it makes q grow", "una forza, positiva se fa crescere q"),
+    "q_force": ("a force, positive where it makes {q} grow",
+                "una forza, positiva se fa crescere {q}"),
     "q_actuator": (
         "the actuator's force, positive in compression",
         "la forza dell'attuatore, positiva se di compressione",

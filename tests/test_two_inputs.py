@@ -315,3 +315,40 @@ def test_unknown_loads_that_do_the_same_work_are_refused():
     with pytest.raises(linkcli.LinkcliError) as caught:
         linkcli.loads(text, name="same.yaml").solve(names=["M1"])
     assert "cannot be found together" in str(caught.value)
+
+
+# --- the invariance and round-trip layers bite on files of several drivers -----------------
+def test_units_invariance_catches_a_second_drivers_rate_read_without_its_unit(monkeypatch):
+    """Planted: the rates of every driver but the first taken as SI numbers, whatever the
+    file's units: the collar's file rewritten in inches disagrees with itself."""
+    from linkcli.input.loads import LoadsSection
+    from test_invariance_units import SYSTEMS, caught, check
+    read = LoadsSection.driver_rate
+
+    def raw(self, spec, path, key, base, order, units):
+        if path[0] == "drivers" and path[1] != next(iter(self.doc.data["drivers"])):
+            return float(self.number(spec.get(key, 0), path + (key,)))
+        return read(self, spec, path, key, base, order, units)
+
+    path = "mechanisms/hibbeler-gupta-16-19-collar-on-rotating-rod.yaml"
+    found = caught(lambda: check(path, SYSTEMS["us"]),
+                   lambda: monkeypatch.setattr(LoadsSection, "driver_rate", raw))
+    assert any("cxdot" in line for line in found), found
+
+
+def test_sweep_round_trip_catches_the_other_drivers_standing_still(monkeypatch):
+    """Planted: a sweep's rows solved with the drivers it does not sweep at rest (their
+    rates 0): the pinion's row at the file's value is no longer solve's."""
+    from linkcli.runs.sweep.blocks import Sweeper
+    from test_roundtrip_exports import sweep_mismatches
+    name = "mechanisms/hibbeler-16-65-pinion-between-racks.yaml"
+    assert not sweep_mismatches(name)
+
+    def still(self, q_si):
+        qs, rates, accels = self.drive(q_si, self.qd, self.qdd, held=False)
+        kin = self.solver.positions(qs)
+        kin.rates, kin.accels = rates, accels
+        return kin
+
+    monkeypatch.setattr(Sweeper, "_positions", still)
+    assert any("xAdot" in line for line in sweep_mismatches(name))

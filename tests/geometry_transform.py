@@ -258,6 +258,10 @@ class Similarity:
             roles[key] = None if rate is None else (lambda v, p: rate(v))
         return self._keys(spec, path, roles)
 
+    def sec_drivers(self, value, path):
+        """Each named driver as ``driver:`` (several inputs, each driven)."""
+        return {name: self.sec_driver(spec, path + (name,)) for name, spec in value.items()}
+
     def sec_coordinates(self, value, path):
         for name, spec in value.items():
             kind = next(iter(spec))
@@ -520,6 +524,12 @@ def frame_class(doc, name, seen=()):
             return ("component", m.group(1), m.group(2))
         if base == "q":
             return "driver"
+        driver = (doc.get("drivers") or {}).get(base)
+        if isinstance(driver, dict):        # a driver's own coordinate, by its name
+            kind = next(k for k in ("angle", "length", "x", "y") if k in driver)
+            if kind in ("x", "y"):
+                return ("component", kind, driver[kind])
+            return "angle" if kind == "angle" and not order else "invariant"
         loads = doc.get("loads") or {}
         if base in loads and loads[base].get("type") in ("driver", "torque", "axial"):
             return "invariant"

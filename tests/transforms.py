@@ -197,6 +197,10 @@ class Sites:
         self.kinds: dict = {}
         self.unknown: list = []
         driver = data.get("driver") if isinstance(data.get("driver"), dict) else None
+        drivers = [d for d in (data.get("drivers") or {}).values() if isinstance(d, dict)] \
+            if isinstance(data.get("drivers"), dict) else []
+        if driver is None and drivers:      # several drivers: the first is q
+            driver = drivers[0]
         self.driver_base = None
         if driver is not None:
             self.driver_base = "angle" if "angle" in driver else "length"
@@ -335,13 +339,19 @@ class Sites:
         if isinstance(value, dict):
             self._only(value, path, {"disc": NAME, "radius": "length", "side": NAME})
 
-    def _driver(self, value, path):
-        base = self.driver_base
+    def _driver(self, value, path, base=None):
+        base = base or self.driver_base
         self._only(value, path, {"angle": NAME, "length": NAME, "x": NAME, "y": NAME,
                                  "value": base,
                                  "rate": "angular_rate" if base == "angle" else "length_rate",
                                  "accel": "angular_accel" if base == "angle"
                                  else "length_accel"})
+
+    def _drivers(self, value, path):
+        """Each named driver as ``driver:``, in the unit of its own kind."""
+        for name, spec in self.items(value, path):
+            base = "angle" if isinstance(spec, dict) and "angle" in spec else "length"
+            self._driver(spec, path + (name,), base)
 
     def _coordinates(self, value, path):
         for name, spec in self.items(value, path):
@@ -761,7 +771,7 @@ class Rename:
         already has (with a point's derived names ``xP``, ``yP``)."""
         taken = set()
         for section in ("params", "quantities", "loads", "sliders", "actuators", "springs",
-                        "dampers", "rolling", "cords", "coordinates"):
+                        "dampers", "rolling", "cords", "coordinates", "drivers"):
             if isinstance(self.data.get(section), dict):
                 taken |= set(self.data[section])
         new = set(self.points.values()) | set(self.links.values())
@@ -786,6 +796,7 @@ class Rename:
         """A name of an answer: ``xB``, ``yBddot`` of a point renamed with it; others kept."""
         if not isinstance(name, str) or name in (self.data.get("quantities") or {}) \
                 or name in (self.data.get("loads") or {}) \
+                or name in (self.data.get("drivers") or {}) \
                 or name in (self.data.get("params") or {}):
             return name
         m = re.fullmatch(r"([xy])(.+?)((?:d)?dot)?", name)
@@ -866,8 +877,9 @@ class Rename:
             spec = d.get(section)
             if isinstance(spec, dict):
                 self.coordinate(spec)
-        for spec in (d.get("coordinates") or {}).values():
-            self.coordinate(spec)
+        for section in ("coordinates", "drivers"):
+            for spec in (d.get(section) or {}).values():
+                self.coordinate(spec)
         for spec in (d.get("loads") or {}).values():
             if "at" in spec:
                 spec["at"] = P(spec["at"])
@@ -880,6 +892,9 @@ class Rename:
                 if isinstance(names, list):
                     fn = P if section == "points" else self.answer
                     d["report"][section] = [fn(n) for n in names]
+        quiz = d.get("quiz")
+        if isinstance(quiz, dict) and isinstance(quiz.get("not_asked"), list):
+            quiz["not_asked"] = [self.answer(n) for n in quiz["not_asked"]]   # report names
         for key in d.get("keys") or []:
             for part in ("values", "wrong", "tolerances"):
                 if isinstance(key.get(part), dict):

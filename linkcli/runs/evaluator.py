@@ -41,7 +41,8 @@ class Evaluator:
         self._straight = None
         plan = plan_for(mech, solve, method, tol)
         self.units = tuple(getattr(plan, "units", {}).get(n) for n in self.names)
-        if not (exprs or solved or limits) and list(plan.names) == list(self.names):
+        if not (exprs or solved or limits) and list(plan.names) == list(self.names) and \
+                len(mech.coordinates) == 1:     # several drivers: solve's path
             self._straight = plan._straight_of(solver_for(mech, method, tol),
                                                plan.order(mech), now=True)
             self._factors = plan.q_factors

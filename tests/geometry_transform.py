@@ -353,13 +353,24 @@ class Similarity:
 
     def contact(self, spec, path):
         return self._keys(spec, path, {"disc": None, "radius": lambda v, p: self.length(v),
-                                       "on": self.rolls_on})
+                                       "on": self.rolls_on, "gear": None})
 
     def rolls_on(self, spec, path):
         def line(v, p):
             return v if isinstance(v, list) else self.axis(v, p)
         return self._keys(spec, path, {"line": line, "side": None, "body": None,
-                                       "circle": None, "radius": lambda v, p: self.length(v)})
+                                       "circle": None, "radius": lambda v, p: self.length(v),
+                                       "disc": None, "inside": None, "gear": None})
+
+    def sec_gears(self, value, path):
+        """A gear's module and addendum are lengths, its diametral pitch (teeth per unit
+        of diameter) a length to the power -1; teeth and the pressure angle (between the
+        line of action and the pitch circles' tangent, no direction) are kept."""
+        return self._each(value, path, lambda spec, p: self._keys(spec, p, {
+            "teeth": None, "module": lambda v, q: self.length(v),
+            "addendum": lambda v, q: self.length(v),
+            "diametral_pitch": lambda v, q: self.length(v, -1),
+            "pressure_angle": None, "internal": None}))
 
     def sec_cords(self, value, path):
         return self._each(value, path, self.cord)
@@ -492,7 +503,8 @@ INVARIANT = {
     "natural_frequency", "natural_period", "damping_ratio", "damped_frequency",
     "mass_matrix", "stiffness_matrix", "damping_matrix", "mode_shape", "phase",
     "forcing_frequency", "frequency_ratio", "beat_period", "eigenvalue", "transmissibility",
-    "characteristic", "receptance", "peak_frequency", "period"}
+    "characteristic", "receptance", "peak_frequency", "period",
+    "centre_distance", "contact_ratio", "min_teeth"}
 RATE = re.compile(r"^(.*?)(ddot|dot)$")
 POINT = re.compile(r"^([xy])(.+)$")
 

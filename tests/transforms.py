@@ -139,7 +139,8 @@ KIND_DIMS = {
     "frequency": _dim((_A, 1), (_T, -1)), "angular_rate": _dim((_A, 1), (_T, -1)),
     "speed": _dim((_L, 1), (_T, -1)), "time": _T, "pressure": _dim((_F, 1), (_L, -2)),
     "area": _dim((_L, 2)), "angular_accel": _dim((_A, 1), (_T, -2)),
-    "length_rate": _dim((_L, 1), (_T, -1)), "length_accel": _dim((_L, 1), (_T, -2))}
+    "length_rate": _dim((_L, 1), (_T, -1)), "length_accel": _dim((_L, 1), (_T, -2)),
+    "per_length": _dim((_L, -1))}
 
 
 class System:
@@ -161,6 +162,7 @@ class System:
                                   else rate[:-2]) + "/s^2"
         names["length_rate"] = names["length"] + "/s"
         names["length_accel"] = names["length"] + "/s^2"
+        names["per_length"] = "1/" + names["length"]      # a diametral pitch (gears:)
         self.names = names
         for kind in names:          # every unit read now: a file's unknown unit fails here
             self.factor(kind)
@@ -316,12 +318,21 @@ class Sites:
     def _rolling(self, value, path):
         for name, spec in self.items(value, path):
             self._only(spec, path + (name,), {"disc": NAME, "radius": "length",
-                                               "on": self._track})
+                                               "on": self._track, "gear": NAME})
 
     def _track(self, value, path):
         self._only(value, path, {"line": self._line, "side": NAME, "body": NAME,
                                  "circle": NAME, "radius": "length", "inside": NAME,
-                                 "disc": NAME})
+                                 "disc": NAME, "gear": NAME})
+
+    def _gears(self, value, path):
+        """docs/schema.md, "gears": teeth a count, the module and the addendum lengths, the
+        diametral pitch teeth per unit of length, the pressure angle an angle."""
+        for name, spec in self.items(value, path):
+            self._only(spec, path + (name,), {"teeth": None, "module": "length",
+                                               "diametral_pitch": "per_length",
+                                               "addendum": "length",
+                                               "pressure_angle": "angle", "internal": NAME})
 
     def _line(self, value, path):
         if not isinstance(value, (list, str)):
@@ -490,7 +501,7 @@ QUANTITY_WORDS = (
     "receptance", "amplitude", "damped_frequency", "damping_matrix", "damping_ratio",
     "equilibrium", "force_amplitude", "forcing_frequency", "free_response", "mass_matrix",
     "mode_shape", "natural_frequency", "phase", "spring_force", "stiffness_matrix",
-    "transmissibility", "expr")
+    "transmissibility", "expr", "centre_distance", "contact_ratio", "min_teeth", "with")
 IGNORED = {"title", "source", "notes", "statement", "units", "k", "report", "keys", "quiz",
            "equilibrium"}
 
@@ -712,7 +723,7 @@ def _scale(value, c):
 # --- order and names ----------------------------------------------------------------------
 #: sections whose entries may come in any order, and mappings inside sections
 ENTRIES = ("frame", "points", "links", "loads", "quantities", "actuators", "sliders",
-           "springs", "dampers", "rolling", "cords")
+           "springs", "dampers", "rolling", "cords", "gears")
 NESTED = (("dynamics",), ("dynamics", "bodies"), ("dynamics", "masses"),
           ("dynamics", "discs"), ("dynamics", "friction"), ("dynamics", "friction_circles"),
           ("excitation", "forces"), ("excitation", "supports"), ("report",))
@@ -856,9 +867,14 @@ class Rename:
                 guide["along"] = [P(p) for p in guide["along"]]
             if isinstance(spec.get("carries"), dict):
                 spec["carries"] = self.keys_of(spec["carries"], P)
+        if isinstance(d.get("gears"), dict):
+            d["gears"] = self.keys_of(d["gears"], self.gear)
         for spec in (d.get("rolling") or {}).values():
             spec["disc"] = B(spec.get("disc"))
             on = spec.get("on") or {}
+            for where in (spec, on):
+                if "gear" in where:
+                    where["gear"] = self.gear(where["gear"])
             if isinstance(on.get("line"), list):
                 on["line"] = [P(p) for p in on["line"]]
             if "circle" in on:
@@ -971,6 +987,19 @@ class Rename:
                 spec[key] = self.answer(spec[key])
         if "expr" in spec:
             spec["expr"] = self.expression(spec["expr"])
+        for key in ("centre_distance", "contact_ratio"):
+            if isinstance(spec.get(key), list):
+                spec[key] = [self.gear(g) for g in spec[key]]
+        for key in ("min_teeth", "with"):
+            if key in spec:
+                spec[key] = self.gear(spec[key])
+
+    def gear(self, name):
+        """A gear of ``gears:``: one named as a link is that link's (docs/schema.md,
+        "gears"), renamed with it; the others keep their names."""
+        if isinstance(name, str) and name in (self.data.get("gears") or {}):
+            return self.body(name)
+        return name
 
     def dynamics(self, spec):
         if not isinstance(spec, dict):

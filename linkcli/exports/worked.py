@@ -116,7 +116,7 @@ def blocks(mech, lang="en", figure=True, method="closed") -> list:
     out += [Block("heading", w["data"]), Block("lines", data_lines(mech, lang, solution))]
     out += [Block("heading", w["structure"]),
             Block("lines", [say(x) for x in explain(mech, method).splitlines()[2:]])]
-    if mech.elements is None and method == "closed":
+    if mech.elements is None and method == "closed" and len(mech.coordinates) == 1:
         out += _kinematics(solved, w, say)
     out.append(Block("heading", w["results"]))
     decimals = mech.report.get("decimals", 1)

@@ -27,6 +27,7 @@ from linkcli.input.report import SECTIONS, ReportSection
 from linkcli.input.keys import KeysSection
 from linkcli.input.bodies import BodiesSection
 from linkcli.input.contacts import ContactsSection
+from linkcli.input.gears import GearsSection
 from linkcli.input.derived import DerivedSection
 from linkcli.input.find import FindSection
 from linkcli.input.oscillation import OscillationSection
@@ -40,7 +41,7 @@ TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points
             "actuators", "sliders", "driver", "drivers", "coordinates", "loads", "quantities",
             "report",
             "keys", "dynamics", "springs", "dampers", "excitation", "initial", "equilibrium",
-            "rolling", "cords", "statement", "quiz", "find"}
+            "rolling", "cords", "statement", "quiz", "find", "gears"}
 VIBRATION_KEYS = ("springs", "dampers", "excitation", "initial", "equilibrium")
 
 __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS", "UNKNOWN",
@@ -49,7 +50,8 @@ __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS
 
 class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSection,
              TextbookQuantities, ForceQuantities, LimitsSection, VibrationQuantities,
-             ReportSection, KeysSection, DerivedSection, OscillationSection, FindSection):
+             ReportSection, KeysSection, DerivedSection, OscillationSection, FindSection,
+             GearsSection):
     """The whole document: units, params, frame and points, then each section."""
 
     def parse(self) -> Mechanism:
@@ -70,6 +72,7 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
         self.block(self.links, data, units, pool, bodies)
         actuators = self.block(self.actuators, data, pool, bodies) or {}
         self.block(self.sliders, data, units, pool, bodies, fixed)
+        self.gear_table = self.block(self.gears, data, units) or {}
         rolling = self.block(self.contacts, data, units, pool, bodies, fixed, moving) or {}
         coordinates = ()
         self.file_units = units
@@ -113,7 +116,8 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
                          as_drawn=self.k_override is None or self.k_override == data.get("k"),
                          statement=self.block(self.statement, data) or "",
                          quiz=self.block(self.quiz, data, report) or Quiz(),
-                         params={n: v for n, v in self.names.items()}, design=design)
+                         params={n: v for n, v in self.names.items()}, design=design,
+                         gears=self.gear_table)
         if "dynamics" in data:
             mech.dynamics = DynamicsReader(self, mech, _Skip).run(data["dynamics"])
         if "coordinates" in data:   # after the dynamics: an element may name a rolling disc

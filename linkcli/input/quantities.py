@@ -24,6 +24,7 @@ import dataclasses
 from linkcli.model.mechanism import LIMITS, VIBRATION, Quantity
 from linkcli.model.units import ANGLE, FORCE, LENGTH, TORQUE
 from linkcli.input.derived import EXPR
+from linkcli.input.gears import GEARING
 from linkcli.input.oscillation import OSCILLATION
 
 #: the kinds of a geometric quantity, each the YAML key that asks for it
@@ -157,6 +158,8 @@ class QuantitiesSection:
             return self.limit_quantity(name, value, path)
         if isinstance(value, dict) and EXPR in value:
             return self.expression_quantity(name, value, path)
+        if isinstance(value, dict) and any(k in value for k in GEARING):
+            return self.gear_quantity(name, value, path)
         value = self.mapping(value, path, set(GEOMETRY) | {"component", "unit", "point",
                                                            "signed", "axis"})
         kinds = [k for k in GEOMETRY if k in value]

@@ -353,6 +353,8 @@ class Mechanism:
     source: object = None
     #: a design question (``find:``, model.design.Design), None when absent
     design: object = None
+    #: name -> model.gears.Gear: the gears given by their teeth (``gears:``)
+    gears: dict = field(default_factory=dict)
 
     def __post_init__(self):
         if not self.coordinates:

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.answers.memory import LONG, keep_freed_memory
+from linkcli.answers.quantities.gearing import gear_value
 from linkcli.answers.quantities.drive import Drive
 from linkcli.answers.quantities.forces import JOINT_FORCES, force_value, loads_at
 from linkcli.answers.quantities.geometry import override_unit, signed_angle, vector, \
@@ -23,6 +24,7 @@ from linkcli.kinematics.solvers import solver_for
 from linkcli.kinematics.straight import straight_of
 from linkcli.model.mechanism import REPORT_SECTIONS, VIBRATION, split_rate
 from linkcli.input.quantities import LEVEL
+from linkcli.input.gears import GEARING
 from linkcli.model.units import FORCE, TORQUE
 
 #: a long array of driver values is solved this many positions at a time (see Plan._in_blocks)
@@ -499,6 +501,8 @@ def value_of(mech, name, kin, loads, context=None):
         from linkcli.model.dimensions import param_unit_name
         value = float(mech.params[base_name])
         return value + 0 * np.asarray(kin.q, dtype=float), param_unit_name(mech, base_name)
+    if quantity.kind in GEARING:
+        return gear_value(mech, quantity, kin)
     if quantity.kind in JOINT_FORCES:
         return force_value(quantity, kin, context or Context(mech, None, kin))
     if quantity.kind in TEXTBOOK:

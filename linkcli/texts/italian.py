@@ -135,6 +135,7 @@ RULES = [(re.compile(pattern), italian) for pattern, italian in (
     (r"^Statics by virtual work: sum of load powers = 0$",
      "Statica con i lavori virtuali: somma delle potenze dei carichi = 0"),
     (r"\(no loads\)", "(nessun carico)"),
+    (r"^  motion of (\S+) alone: ", r"  moto del solo \1: "),
     # power balance (dynamics)
     (r"^Power balance \(inverse dynamics\): ", "Bilancio delle potenze (dinamica inversa): "),
     (r"\bat the file's position: ", "nella posizione del file: "),

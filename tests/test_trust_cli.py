@@ -376,7 +376,7 @@ def test_draw_labels_do_not_overlap(name):
     236 labels of 60 files lay across them."""
     from linkcli.api import load
     from linkcli.errors import StructureError
-    from linkcli.pictures.drawing import label_boxes
+    from linkcli.pictures.labels import label_boxes
     from linkcli.pictures.plotting import drawn
     mech = load(os.path.join(ROOT, "mechanisms", name)).model
     try:
@@ -497,7 +497,7 @@ def test_the_modes_labels_are_apart_and_off_the_mechanism():
     over its block and spring s1's zigzag)."""
     import linkcli
     from linkcli.pictures import vibration as pictures
-    from linkcli.pictures.drawing import label_boxes
+    from linkcli.pictures.labels import label_boxes
     mech = linkcli.load(os.path.join(ROOT, "tests", "data", "vibration",
                                      "symmetric_chain_mode.yaml")).model
     fig = pictures.modes_figure(mech)

@@ -19,7 +19,7 @@ import cmath
 import math
 
 from linkcli.model.mechanism import FRAME
-from linkcli.texts.amounts import CLOSE, Writer
+from linkcli.texts.amounts import CLOSE, Writer, digits
 from linkcli.texts.bodies import fixed_line
 from linkcli.texts.loads import force_by_components
 from linkcli.texts.unknowns import unknown_datum
@@ -32,6 +32,8 @@ from linkcli.pictures.scene import (Scene, disc_points, element_ends, greek, loa
 
 DRIVER = "#1f3f99"
 DIMENSION = "#444444"
+STATED = 6          # significant digits of a length drawn as stated; longer ones are rounded
+ROUNDED = 3         # significant digits kept at least where a length is rounded
 
 
 def exam_figure(mech, lang="en", method="closed", dpi=100):
@@ -97,8 +99,20 @@ def _lengths(ax, scene, w):
         def length(m):
             return abs(m.bodies[body.name].local[q] - m.bodies[body.name].local[p])
         unknown = unknown_datum(mech, length, mech.units.factor("length"))
-        _text(ax, _side(scene, a, b, 0.045), unknown or w.length(length(mech)), (a + b) / 2,
+        _text(ax, _side(scene, a, b, 0.045), unknown or _dimension(w, length(mech)), (a + b) / 2,
               color=DIMENSION, fontsize=8, ha="center", va="center", zorder=9)
+
+
+def _dimension(w, si) -> str:
+    """A length as the exam prints it: a stated number whole ('220 mm', '0.035 m'), a
+    number that no short decimal writes (a length of sqrt(2) m) rounded to the report's
+    decimals, keeping at least ROUNDED significant digits."""
+    value = si / w.units.factor("length")
+    if digits(value) <= STATED:
+        return w.length(si)
+    places = max(w.mech.report.get("decimals", 1),
+                 ROUNDED - 1 - math.floor(math.log10(abs(value))))
+    return f"{w.num(round(value, places))} {w.units.names['length']}"
 
 
 def _guides(ax, scene, w):

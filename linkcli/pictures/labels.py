@@ -2,15 +2,20 @@
 read whole, on no other label, on no drawn stroke and inside the picture.
 
 A label is tried where it was drawn, then at candidate spots on rings around it
-(:data:`DIRECTIONS` a ring, the rings :data:`STEP` font sizes apart): the first spot free
-of the labels placed before it, of every stroke of the axes (lines, outlines, arcs,
-arrows, markers; a stroke may reach :data:`CLEAR` font sizes into the label's box, so
-that a label may touch the line it names) and of the edge is taken.  A label moved
-further than :data:`LEADER` font sizes gets a thin leader line back to the point it was
-drawn at.  Where some label finds no free spot, the view is widened (:data:`WIDEN`, at
-most :data:`WIDENINGS` times) and every label is placed again; after that, the spot of
-fewest collisions is taken.  Everything is measured in pixels of the figure as it is
-saved, so call :func:`place_labels` once the axes' layout is final.
+(:data:`DIRECTIONS` a ring, the rings :data:`STEP` font sizes apart), scored by its
+collisions: with the labels placed before it, with every stroke of the axes (lines,
+outlines, arcs, arrows, markers; a stroke may reach :data:`CLEAR` font sizes into the
+label's box, so that a label may touch the line it names) and with the edge (the axes'
+frame where the axes are shown, else the figure).  The nearest free spot is taken.  A
+label moved further than :data:`LEADER` font sizes gets a thin leader line back to the
+point it names (an annotation's point, else where it was drawn), and its spot must
+leave that line off the other labels; where the point is hemmed in by labels, the
+nearest spot free without a leader is taken.  Where a label finds room only beyond the
+edge, the view is widened across that edge (:data:`WIDEN`, at most :data:`WIDENINGS`
+times) and every label is placed again; a view is never widened for crowding, which it
+would only make worse.  After that, the spot of fewest collisions is taken.
+Everything is in pixels of the figure as it is saved: call :func:`place_labels` once
+the axes' layout is final.
 """
 from __future__ import annotations
 
@@ -87,11 +92,16 @@ def strokes(ax, renderer) -> tuple:
 
 def crossing(boxes, segments, pads):
     """For each box (x0, y0, x1, y1 in pixels, an (m, 4) array): whether a segment, widened
-    by its pad, passes through it (Liang-Barsky: the part of each segment P0 + t (P1 - P0),
-    t in [0, 1], inside the box is not empty)."""
-    boxes = np.asarray(boxes, float)[:, None, :]
+    by its pad, passes through it."""
     if segments.shape[0] == 0:
-        return np.zeros(boxes.shape[0], bool)
+        return np.zeros(len(boxes), bool)
+    return hits(boxes, segments, pads).any(axis=-1)
+
+
+def hits(boxes, segments, pads):
+    """(m, n): whether segment j, widened by its pad, passes through box i (Liang-Barsky:
+    the part of the segment P0 + t (P1 - P0), t in [0, 1], inside the box is not empty)."""
+    boxes = np.asarray(boxes, float)[:, None, :]
     x0, y0, x1, y1 = (segments[None, :, i] for i in range(4))
     lo_x, lo_y = boxes[..., 0] - pads, boxes[..., 1] - pads
     hi_x, hi_y = boxes[..., 2] + pads, boxes[..., 3] + pads
@@ -108,7 +118,7 @@ def crossing(boxes, segments, pads):
             r = np.where(flat, 0.0, q / np.where(flat, 1.0, p))
         t0 = np.where(~flat & (p < 0), np.maximum(t0, r), t0)
         t1 = np.where(~flat & (p > 0), np.minimum(t1, r), t1)
-    return (~outside & (t0 <= t1)).any(axis=-1)
+    return ~outside & (t0 <= t1)
 
 
 # --- candidate spots -------------------------------------------------------------------------
@@ -156,8 +166,7 @@ class _Layout:
             ends = _nearest(boxes, anchor)
             seg = np.hstack([np.broadcast_to(anchor, ends.shape), ends])
             far = np.hypot(*(ends - anchor).T) > LEADER * size
-            for i in np.nonzero(far)[0]:
-                leader[i] = crossing(placed, seg[i:i + 1], np.zeros(1)).any()
+            leader[far] = hits(placed, seg[far], np.zeros(far.sum())).any(axis=0)
         return 10 * on_labels + 10 * out + on_lines, leader, out
 
     def open_at(self, anchor):

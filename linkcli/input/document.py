@@ -92,7 +92,8 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
                                "its coordinates", hint="replace 'driver:' by 'coordinates:', "
                                "e.g. coordinates: {theta: {angle: [O, A]}}")
         loads = self.block(self.loads, data, units, pool, bodies, actuators, driver,
-                           "coordinates" not in data) or {}
+                           "coordinates" not in data,
+                           coordinates if "drivers" in data else ()) or {}
         self.vibration = {"coordinates": {c.name for c in coordinates}
                           if "coordinates" in data else set(),
                           "springs": self.element_names(data, "springs"),

@@ -475,7 +475,7 @@ class Sites:
 
     def _initial(self, value, path):
         for key, v in self.items(value, path):
-            if key == "from":
+            if key in ("from", "mode"):         # a mode's number is no value
                 continue
             name, rate = (key[:-4], True) if str(key).endswith("_dot") else (key, False)
             base = self.bases.get(name)

@@ -332,3 +332,25 @@ def test_the_evaluator_of_names_it_does_not_write_is_solves():
     assert ev._straight is None
     assert ev(30.0) == tuple(float(v) for v in linkage.solve(30.0, names=["beta", "vB"])
                              .values.values())
+
+
+def test_the_kinematics_evaluator_gives_the_solvers_points_and_angles():
+    """``straight.evaluator`` (SI probes for the layers above kinematics): a point's x, y
+    and rates, a link's angle and rates, at qd = 1 and qdd = 0 the derivatives over q."""
+    mech = linkcli.loads(FOURBAR).model
+    solver = solver_for(mech)
+    fast = straight.evaluator(solver, [("x", "B", None, 1), ("y", "B", None, 2),
+                                       ("angle", "A", "B", 0), ("angle", "A", "B", 2),
+                                       ("length", "A0", "B", 1)])
+    q = np.linspace(0.1, 6.0, 7)
+    kin = solved(solver, 2, q, 1.0, 0.0)
+    z, dz, ddz = (d["B"] - d["A"] for d in (kin.pos, kin.vel, kin.acc))
+    w = dz / z
+    r = kin.pos["B"] - mech.fixed["A0"]
+    expected = [kin.vel["B"].real, kin.acc["B"].imag, np.angle(z) % (2 * np.pi),
+                (ddz / z - w * w).imag, (r.conjugate() * kin.vel["B"]).real / np.abs(r)]
+    table = fast.array(q, 1.0, 0.0)
+    for i, e in enumerate(expected):
+        assert np.allclose(table[i], e, rtol=0, atol=CLOSE * np.max(np.abs(e))), i
+        assert np.isclose(fast.scalar(float(q[3]), 1.0, 0.0)[i], e[3], rtol=0,
+                          atol=CLOSE * np.max(np.abs(e))), i

@@ -322,6 +322,8 @@ class Plan:
         table = np.empty((len(self.names), qs.size))
 
         straight = self._straight_of(solver, order, now=True)
+        if straight is not None:
+            straight.function(True)     # written once, before the threads share it
 
         def solve(lo):
             hi = min(qs.size, lo + BLOCK)

@@ -184,6 +184,8 @@ def compare(mech, names, flip=False, seed=0):
         assert table is not None
         rows = _general(mech, plan, solver, np.array(answered), w, al)
         worst = max(worst, _worst(rows, table, periods, scales))
+        short = fast.short(np.array(answered[:straight.SHORT]), w, al)    # a few positions
+        worst = max(worst, _worst(rows[:, :straight.SHORT], short, periods, scales))
     return worst, len(found), left
 
 

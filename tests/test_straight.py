@@ -130,13 +130,22 @@ def _edges(mech, plan, solver, count=240):
     return np.array(out)
 
 
+def _scalar(fast, q, w, al):
+    """The scalar version's answer, None where it refuses (an arithmetic exception
+    included, as the plan takes it)."""
+    try:
+        return fast.scalar(q, w, al)
+    except (ArithmeticError, ValueError):
+        return None
+
+
 def _conditioning(solver, q, w, al):
     """The least conditioning of the groups' rate systems at driver value ``q``."""
     kin = solved(solver, 1, np.array([q]), w, al)
     return min([float(np.min(m)) for m in kin.measure.values()] + [1.0])
 
 
-def compare(mech, names, flip=False, seed=0):
+def compare(mech, names, flip=False, seed=0, extra=()):
     """(worst difference, positions answered, random positions left to the general path
     while it answers) of the straight-line solve against the general path, one position at
     a time and all at once, relative to each quantity's largest magnitude at the random
@@ -150,11 +159,11 @@ def compare(mech, names, flip=False, seed=0):
         return None
     w, al = mech.driver.rate, mech.driver.accel
     randoms = np.concatenate([[mech.driver.value], _driver_range(mech, 40, seed)])
-    edges = _edges(mech, plan, solver)
+    edges = np.concatenate([extra, _edges(mech, plan, solver)])
     found, left = [], 0
     for q in np.concatenate([randoms, edges]):
         general = _general(mech, plan, solver, np.array([q]), w, al)
-        mine = fast.scalar(float(q), w, al)
+        mine = _scalar(fast, float(q), w, al)
         if isinstance(general, LinkcliError):
             assert mine is None, (q, str(general))
             assert fast.array(np.array([q]), w, al) is None, q
@@ -237,6 +246,24 @@ def test_a_sign_flipped_in_one_generated_group_is_caught(monkeypatch):
     monkeypatch.setitem(straight._GROUPS, straight.RRR, flipped)
     mech = linkcli.loads(FOURBAR).model
     assert compare(mech, names)[0] > 1e-3
+
+
+def test_a_check_left_out_is_caught(monkeypatch):
+    """A planted defect: the generated checks dropped.  A rod 40 mm long on a crank of 50
+    reaches the guide only while 50 sin q <= 40: just inside that limit its discriminant
+    is within the toggle's rounding band, a position the general path refuses (singular);
+    without its checks the straight-line solve answers it, and the comparison says so."""
+    text = CRANK_SLIDER.replace("length: 200", "length: 40")
+    names = ["beta", "betadot", "xBddot"]
+    limit = math.asin(0.040 * math.sqrt(1 - 1e-14) / 0.050)     # 40^2 - (50 sin q)^2 ~ 0
+    mech = linkcli.loads(text).model
+    plan, solver, _ = _setup(mech, names)
+    assert isinstance(_general(mech, plan, solver, np.array([limit]), 1.0, 0.0),
+                      SingularError)
+    compare(mech, names, extra=[limit])
+    monkeypatch.setattr(straight._Writer, "require", lambda self, lhs, rhs: None)
+    with pytest.raises(AssertionError):
+        compare(linkcli.loads(text).model, names, extra=[limit])
 
 
 def assert_same_refusal(text, q, kind, field, monkeypatch):

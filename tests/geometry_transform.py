@@ -382,7 +382,8 @@ class Similarity:
             return self._keys(v, p, {"disc": None, "side": None,
                                      "radius": lambda w, q: self.length(w)})
         return self._keys(spec, path, {"pulley": None, "radius": lambda v, p: self.length(v),
-                                       "to": to, "along": self.axis, "side": None})
+                                       "to": to, "along": self.axis, "side": None,
+                                       "slip": None})
 
     def sec_springs(self, value, path):
         return self._each(value, path, lambda v, p: self.element(v, p, "k"))

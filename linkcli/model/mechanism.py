@@ -87,7 +87,9 @@ class Rolling:
       ``track_radius``), which it meets on its ``other_side`` (+1 left, -1 right, looking
       along the strand): the strand's speed along u at the other disc is
       v_D . u - other_side r_D omega_D, so
-      omega = side ((v_C - v_D) . u + other_side r_D omega_D) / r.
+      omega = side ((v_C - v_D) . u + other_side r_D omega_D) / r; a belt that slips by the
+      fraction ``slip`` turns the pulley (the follower) at (1 - slip) of that:
+      omega = (1 - slip) side (...) / r.
 
     Each contact takes one degree of freedom (a higher pair in Grübler's count); a disc
     may have any number of them (a pulley with several cords).
@@ -107,6 +109,7 @@ class Rolling:
     other: str | None = None
     other_side: int = 1
     carrier: str = FRAME
+    slip: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -149,12 +152,14 @@ class Driver:
 
 @dataclass(frozen=True)
 class Load:
-    """An external load.  ``value`` is None for the one unknown load.
+    """An external load.  ``value`` is None for the one unknown load (one per driver with
+    several drivers).
 
     kind 'force': at point ``target`` along unit direction ``direction``
     (complex), magnitude ``value`` (N); 'torque': on body ``target`` (N m,
     counter-clockwise); 'axial': on actuator ``target`` (N, > 0 pushes the
-    ends apart); 'driver': generalised force on q (N or N m).  A pressure load is
+    ends apart); 'driver': generalised force on q (N or N m), with several drivers on
+    the driver named ``target``.  A pressure load is
     the force or axial load p A, with ``pressure`` = (p in Pa, A in m^2, the bore D
     in m or None) as the problem states them.
     """
@@ -372,6 +377,15 @@ class Mechanism:
         figure = {**self.fixed, **self.moving}
         return [figure[p] for p in self.points]
 
+    @property
+    def inputs(self) -> tuple:
+        """(values, rates, accelerations) of the file's own position as the solvers take
+        them: numbers for one driver (or coordinate), tuples over them for several."""
+        cs = self.coordinates
+        if len(cs) == 1:
+            return cs[0].value, cs[0].rate, cs[0].accel
+        return tuple(tuple(getattr(c, a) for c in cs) for a in ("value", "rate", "accel"))
+
     def unknown_load(self) -> Load:
         load = next((load for load in self.loads.values() if load.value is None), None)
         if load is None:
@@ -380,9 +394,16 @@ class Mechanism:
                              hint="give one load, usually the driver's, the value 'unknown'")
         return load
 
+    def unknown_loads(self) -> list:
+        """The unknown loads, one per driver of a mechanism of several drivers."""
+        return [load for load in self.loads.values() if load.value is None]
+
     def load_unit_kind(self, load: Load) -> str:
-        """'torque' for a torque or the driver load of an angle driver, else 'force'."""
-        if load.kind == "torque" or load.kind == "driver" and self.driver.kind == "angle":
+        """'torque' for a torque or the driver load of an angle driver (the driver it acts
+        on, ``target``, with several drivers), else 'force'."""
+        driver = next((c for c in self.coordinates if c.name == load.target), self.driver) \
+            if load.kind == "driver" else None
+        if load.kind == "torque" or driver is not None and driver.kind == "angle":
             return "torque"
         return "force"
 

@@ -169,7 +169,9 @@ def test_driver_and_drivers_together_are_refused(tmp_path):
     path = tmp_path / "both.yaml"
     path.write_text(FOURBAR + "driver: {angle: [O, A], value: 90}\n", encoding="utf-8")
     code, _, err = run(["solve", str(path)])
-    assert code == 2 and "key 'drivers'" in err and "not both 'driver' and 'drivers'" in err
+    # the second of the two in the file's order is refused, at its own line
+    assert code == 2 and "both.yaml:10, key 'driver'" in err
+    assert "not both 'drivers' and 'driver'" in err
 
 
 # --- sweeps over one driver ---------------------------------------------------------------

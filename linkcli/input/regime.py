@@ -13,6 +13,7 @@ docs/machines.md, "The periodic regime and the flywheel"):
     quantities:
       wm: {regime: mean_speed}           # and the other answers of model.regime.REGIME
       If: {flywheel: exact}              # or approximate
+      mf: {flywheel: approximate, radius: 0.5}   # its mass at that radius of gyration
 
 The flywheel is the driver's link's own inertia (``dynamics: bodies: LINK: inertia``).
 """
@@ -92,11 +93,19 @@ class RegimeSection:
 
     def regime_quantity(self, name, value, path) -> Quantity:
         """``{regime: ANSWER}`` or ``{flywheel: approximate | exact}``, with ``unit``."""
-        value = self.mapping(value, path, set(KINDS) | {"unit"})
+        value = self.mapping(value, path, set(KINDS) | {"unit", "radius"})
         kind, where, arg = self.one_kind(value, path, KINDS)
         answers = REGIME if kind == "regime" else FLYWHEEL
         if arg not in answers:
             raise self.error(where, f"a {kind} answer is one of {', '.join(answers)}, got "
                              f"{arg!r}")
+        radius = None
+        if "radius" in value:
+            if kind != "flywheel":
+                raise self.error(path + ("radius",), "'radius' is a flywheel's (its mass at "
+                                 "that radius of gyration)")
+            radius = self.number(value["radius"], path + ("radius",), "length", self.file_units)
+            if not radius > 0:
+                raise self.error(path + ("radius",), "a radius of gyration is positive")
         unit = self.answer_unit(value, path)
-        return Quantity(name, kind, arg, unit=unit, line=self.doc.line(path))
+        return Quantity(name, kind, arg, unit=unit, line=self.doc.line(path), radius=radius)

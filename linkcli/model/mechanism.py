@@ -216,6 +216,8 @@ class Quantity:
     #: of the characteristic polynomial's coefficient, 'monic' (divided by the leading one)
     form: str | None = None
     axis: tuple | None = None      # a joint force's direction of projection (see above)
+    #: a flywheel's radius of gyration (m): the answer is then its mass (model.regime)
+    radius: float | None = None
 
     @property
     def rates(self) -> int:

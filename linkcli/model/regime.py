@@ -42,7 +42,7 @@ def regime_dimension(mech, quantity):
     from linkcli.model.units import ANGLE_DIM, FORCE_DIM, LENGTH_DIM, MASS_DIM, NONE, TIME_DIM
 
     if quantity.kind == "flywheel":
-        return MASS_DIM * LENGTH_DIM ** 2
+        return MASS_DIM if quantity.radius is not None else MASS_DIM * LENGTH_DIM ** 2
     a = quantity.a
     if a in ("mean_speed", "max_speed", "min_speed"):
         return ANGLE_DIM / TIME_DIM

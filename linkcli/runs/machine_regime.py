@@ -55,7 +55,8 @@ def answer(mech, quantity) -> float:
     """The SI value of a ``regime:`` or ``flywheel:`` quantity."""
     spec = _require_spec(mech, quantity)
     if quantity.kind == "flywheel":
-        return flywheel_answer(mech, quantity, spec)
+        inertia = flywheel_answer(mech, quantity, spec)
+        return inertia if quantity.radius is None else inertia / quantity.radius ** 2
     if spec.areas:
         return _areas_answer(mech, quantity, spec)
     reg = solved(mech)
@@ -84,7 +85,8 @@ def display(mech, quantity) -> tuple:
     dim = regime_dimension(mech, quantity)
     a = quantity.a
     if quantity.kind == "flywheel":
-        return mech.units.show(dim, "inertia", quantity.unit)
+        return mech.units.show(dim, "inertia" if quantity.radius is None else "mass",
+                               quantity.unit)
     if a in ("mean_speed", "max_speed", "min_speed"):
         return mech.units.display("angle", 1) if quantity.unit is None else \
             mech.units.show(dim, None, quantity.unit)

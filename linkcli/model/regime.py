@@ -12,9 +12,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-#: what ``regime:`` answers: speeds and where they are reached, the coefficient of
+#: what ``regime:`` answers: speeds (the mean (w_max + w_min) / 2, the average over the
+#: cycle's time) and where they are reached, the coefficient of
 #: fluctuation, the largest fluctuation of energy, the extreme accelerations, the cycle's time
-REGIME = ("mean_speed", "max_speed", "min_speed", "at_max_speed", "at_min_speed",
+REGIME = ("mean_speed", "average_speed", "max_speed", "min_speed", "at_max_speed", "at_min_speed",
           "fluctuation", "energy_fluctuation", "max_acceleration", "at_max_acceleration",
           "min_acceleration", "at_min_acceleration", "cycle_time")
 #: what ``flywheel:`` answers: the books' approximation and the exact inertia
@@ -44,7 +45,7 @@ def regime_dimension(mech, quantity):
     if quantity.kind == "flywheel":
         return MASS_DIM if quantity.radius is not None else MASS_DIM * LENGTH_DIM ** 2
     a = quantity.a
-    if a in ("mean_speed", "max_speed", "min_speed"):
+    if a in ("mean_speed", "average_speed", "max_speed", "min_speed"):
         return ANGLE_DIM / TIME_DIM
     if a.startswith("at_"):
         return ANGLE_DIM

@@ -81,24 +81,22 @@ def _require_spec(mech, quantity):
 
 
 def display(mech, quantity) -> tuple:
-    """(unit, SI factor) of a regime or flywheel answer in the file's units."""
+    """(unit, SI factor) of a regime or flywheel answer: its own ``unit``, else the file's
+    (the driver's rates for speeds and accelerations, its angle for positions)."""
     dim = regime_dimension(mech, quantity)
+    if quantity.unit is not None:
+        return mech.units.show(dim, None, quantity.unit)
     a = quantity.a
     if quantity.kind == "flywheel":
-        return mech.units.show(dim, "inertia" if quantity.radius is None else "mass",
-                               quantity.unit)
-    if a in ("mean_speed", "max_speed", "min_speed"):
-        return mech.units.display("angle", 1) if quantity.unit is None else \
-            mech.units.show(dim, None, quantity.unit)
-    if a.startswith("at_"):
-        return mech.units.display("angle", 0)
-    if a in ("max_acceleration", "min_acceleration"):
-        return mech.units.show(dim, None, quantity.unit) if quantity.unit else \
-            ("rad/s^2", 1.0)
+        return mech.units.show(dim, "inertia" if quantity.radius is None else "mass")
+    orders = {"max_acceleration": 2, "min_acceleration": 2, "mean_speed": 1, "max_speed": 1,
+              "min_speed": 1, "average_speed": 1}
+    if a in orders or a.startswith("at_"):
+        return mech.units.display("angle", orders.get(a, 0))
     if a == "energy_fluctuation":
-        return mech.units.show(dim, "torque", quantity.unit)
+        return mech.units.show(dim, "torque")
     if a == "cycle_time":
-        return mech.units.show(dim, "time", quantity.unit)
+        return mech.units.show(dim, "time")
     return "", 1.0
 
 
@@ -236,8 +234,9 @@ def diagram(mech, spec):
 
 
 def _areas_answer(mech, quantity, spec) -> float:
-    """The books' answers of a diagram of areas: DeltaE; with a constant J and the mean
-    speed w_m = (w_max + w_min) / 2, DeltaE = J w_m^2 delta gives delta and the speeds."""
+    """The answers of a diagram of areas: DeltaE; with a constant J and the mean speed
+    w_m = (w_max + w_min) / 2, DeltaE = 1/2 J (w_max^2 - w_min^2) = J w_m^2 delta exactly,
+    which gives delta and the speeds w_m (1 +- delta / 2)."""
     dE, J, _ = diagram(mech, spec)
     w = spec.mean_speed
     if J <= 0:

@@ -368,8 +368,24 @@ class Sites:
         for name, spec in self.items(value, path):
             known = dict.fromkeys(QUANTITY_WORDS, NAME)
             known.update({"from": limit_kind, "to": limit_kind, "time": "time",
-                          "axis": self._axis})
+                          "axis": self._axis, "radius": "length"})
             self._only(spec, path + (name,), known)
+
+    def _motion(self, value, path):
+        """The motion of a machine (docs/machines.md): the time integrated, the periodic
+        regime's mean speed (the driver's rate) and a diagram's areas (pure numbers) with
+        the scales of its drawing, the coefficient of fluctuation and the turns of a cycle."""
+        self._only(value, path, {"until": "time", "regime": self._regime,
+                                 "flywheel": lambda v, p: self._only(v, p, {"fluctuation": None}),
+                                 "turns_per_cycle": None})
+
+    def _regime(self, value, path):
+        rate = "angular_rate" if self.driver_base == "angle" else "length_rate"
+        self._only(value, path, {
+            "mean_speed": rate,
+            "areas": lambda v, p: [self.put(p + (i,), None, a) for i, a in enumerate(v)]
+            if isinstance(v, list) else self._numbers(v, p),
+            "scale": lambda v, p: self._only(v, p, {"torque": "torque", "angle": "angle"})})
 
     def _axis(self, value, path):
         if isinstance(value, dict):
@@ -480,7 +496,7 @@ QUANTITY_WORDS = (
     "receptance", "amplitude", "damped_frequency", "damping_matrix", "damping_ratio",
     "equilibrium", "force_amplitude", "forcing_frequency", "free_response", "mass_matrix",
     "mode_shape", "natural_frequency", "phase", "spring_force", "stiffness_matrix",
-    "transmissibility", "expr")
+    "transmissibility", "expr", "regime", "flywheel")
 IGNORED = {"title", "source", "notes", "statement", "units", "k", "report", "keys", "quiz",
            "equilibrium"}
 

@@ -10,6 +10,7 @@ each is labelled with its area.  matplotlib is imported inside the functions.
 """
 from __future__ import annotations
 
+import textwrap
 from dataclasses import dataclass
 
 import numpy as np
@@ -113,7 +114,6 @@ def picture(reg: Regime, units, title: str = "", dpi: int = 100):
         top.annotate(f"{label} {value / w_f:.4g}", (at / q_f, value / w_f),
                      textcoords="offset points", xytext=(4, 4), fontsize=8)
     top.set_ylabel(f"w [{w_unit}]")
-    import textwrap
     head = "\n".join(textwrap.wrap(title, 80)) + "\n" if title else ""
     top.set_title(f"{head}delta = {reg.fluctuation:.4g}, "
                   f"DeltaE = {reg.energy_fluctuation:.6g} J", fontsize=10)

@@ -896,6 +896,9 @@ class Rename:
                 if isinstance(names, list):
                     fn = P if section == "points" else self.answer
                     d["report"][section] = [fn(n) for n in names]
+        quiz = d.get("quiz")
+        if isinstance(quiz, dict) and isinstance(quiz.get("not_asked"), list):
+            quiz["not_asked"] = [self.answer(n) for n in quiz["not_asked"]]   # report names
         for key in d.get("keys") or []:
             for part in ("values", "wrong", "tolerances"):
                 if isinstance(key.get(part), dict):

@@ -73,9 +73,11 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, no_given,
     emit(text.rstrip("\n"), output)
 
 
-def _repeated_line(file, count, total, no_given) -> str:
-    """'FILE: N of M boxes ask a value the question gives', and what --no-given does."""
-    what = "left out by --no-given" if no_given else "--no-given leaves them out"
+def _repeated_line(file, count, total, ask_given, no_given) -> str:
+    """'FILE: N of M boxes ask a value the question gives', and what leaves them out:
+    --no-given, the file's quiz.ask_given: false, or (neither) what --no-given would do."""
+    what = "left out by --no-given" if no_given else "left out by the file's " \
+        "quiz.ask_given: false" if not ask_given else "--no-given leaves them out"
     return (f"{os.path.basename(file)}: {count} of {total} box{'' if total == 1 else 'es'} "
             f"ask{'s' if count == 1 else ''} a value the question gives ({what})")
 

@@ -136,11 +136,12 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
         return value
 
     def quiz(self, data, report) -> Quiz:
-        """``quiz: {points: {position: 9, velocity: 9, statics: 2}, tolerance: 0.05}``."""
+        """``quiz: {points: {position: 9, velocity: 9, statics: 2}, tolerance: 0.05,
+        ask_given: false, not_asked: [phi4dot, phi5dot]}``."""
         spec = data.get("quiz")
         if spec is None:
             return Quiz()
-        spec = self.mapping(spec, ("quiz",), {"points", "tolerance"})
+        spec = self.mapping(spec, ("quiz",), {"points", "tolerance", "ask_given", "not_asked"})
         points = None
         if "points" in spec:
             path = ("quiz", "points")
@@ -160,7 +161,23 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
             if not tolerance > 0:
                 raise self.error(("quiz", "tolerance"), f"a tolerance must be positive, got "
                                  f"{spec['tolerance']!r}", hint="in the answers' display units")
-        return Quiz(points, tolerance)
+        ask_given = spec.get("ask_given", True)
+        if not isinstance(ask_given, bool):
+            raise self.error(("quiz", "ask_given"), f"expected true or false, got {ask_given!r}",
+                             hint="false leaves out the boxes whose value the question gives")
+        return Quiz(points, tolerance, ask_given, self.not_asked(spec, report))
+
+    def not_asked(self, spec, report) -> tuple:
+        """``quiz.not_asked``: report names the quiz leaves out (the statement does not ask
+        them); each must be a name of the report."""
+        path = ("quiz", "not_asked")
+        value = spec.get("not_asked", [])
+        if not isinstance(value, list):
+            raise self.error(path, f"expected a list of the report's names, got {value!r}")
+        listed = {n for section in SECTIONS for n in (report or {}).get(section) or []
+                  if isinstance(n, str)}
+        return tuple(self.name(n, path + (i,), listed, "name of the report")
+                     for i, n in enumerate(value))
 
     @staticmethod
     def element_names(data, key) -> set:

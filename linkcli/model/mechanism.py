@@ -293,11 +293,16 @@ class AnswerKey:
 @dataclass(frozen=True)
 class Quiz:
     """How a Moodle quiz scores the file: ``points`` per report section (the exams'
-    9/9/2; None: one point per answer box) and the answers' absolute ``tolerance`` in
-    display units (None: half a unit of the last printed decimal)."""
+    9/9/2; None: one point per answer box), the answers' absolute ``tolerance`` in
+    display units (None: half a unit of the last printed decimal), whether it asks the
+    values the question gives (``ask_given``; false as ``export --no-given``) and the
+    report's names it does not ask (``not_asked``: printed by solve and checked against
+    the key, but not asked by the statement)."""
 
     points: dict | None = None
     tolerance: float | None = None
+    ask_given: bool = True
+    not_asked: tuple = ()
 
 
 @dataclass(eq=False)

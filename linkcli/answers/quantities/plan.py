@@ -19,6 +19,7 @@ from linkcli.answers.quantities.textbook import Context, textbook_value, TEXTBOO
 from linkcli.errors import InputError, LinkcliError, SolveError
 from linkcli.kinematics.compiled import X as X_PROBE, Y as Y_PROBE, compiled, program_of
 from linkcli.kinematics.solvers import solver_for
+from linkcli.kinematics.straight import straight_of
 from linkcli.model.mechanism import REPORT_SECTIONS, VIBRATION, split_rate
 from linkcli.input.quantities import LEVEL
 from linkcli.model.units import FORCE, TORQUE
@@ -195,6 +196,8 @@ class Plan:
             self.probes += [(axis, p, None, 0, f, False) for p, _, f in self.points
                             for axis in (X_PROBE, Y_PROBE)]
         self._program = False           # (program, probes) built at the first compiled call
+        self._straight = False          # the straight-line solve (at the second call)
+        self._called = False
 
     def order(self, mech) -> int:
         """The highest order of rates the names need (checked at the first call)."""
@@ -207,10 +210,19 @@ class Plan:
         names need, refusing unassembled and singular positions, and evaluate them."""
         solver = solver_for(mech, self.method, self.tol)
         order = self.order(mech)
+        straight = self._straight_of(solver, order)
+        if straight is not None:
+            result = self._one_position(mech, solver, straight, q, qdot, qddot)
+            if result is not None:
+                return result
         driver = self._driver_si(mech.driver, q, qdot, qddot)
         if q is not None and self.probes is not None and np.size(q) <= COMPILED_MOST \
                 and compiled() is not None:
             result = self._compiled(mech, solver, order, *driver)
+            if result is not None:
+                return result
+        if straight is not None and q is not None:
+            result = self._straight_array(mech, solver, straight, *driver)
             if result is not None:
                 return result
         if q is not None and np.size(q) >= LONG:
@@ -224,6 +236,53 @@ class Plan:
             from linkcli.kinematics.solvers import figure_cautions
             result.cautions = figure_cautions(mech, self.method, self.tol) + result.cautions
         return result
+
+    def _straight_of(self, solver, order, now=False):
+        """The straight-line solve of these names (``kinematics.straight``), None where it
+        cannot express them; worked out at the second call (or ``now``): writing it costs
+        about a millisecond, the time of a few calls by the general path, which a file
+        solved once (a command, a trial of a design question, a value of a parameter
+        sweep) would not win back."""
+        if self._straight is False:
+            if not now and not self._called:
+                self._called = True
+                return None
+            self._straight = straight_of(solver, self.probes, order) \
+                if self.probes is not None and self.method == "closed" else None
+        return self._straight
+
+    def _one_position(self, mech, solver, straight, q, qdot, qddot):
+        """:meth:`evaluate` of one position (numbers) by the straight-line solve; None where
+        it is not one position or a check leaves it to the general path (which answers the
+        close cases and words the refusals)."""
+        driver = mech.driver
+        f0, f1, f2 = self.q_factors
+        try:
+            w = driver.rate if qdot is None else _number(qdot, f1)
+            al = driver.accel if qddot is None else _number(qddot, f2)
+            qs = driver.value if q is None else _number(q, f0)
+            if qs is None or w is None or al is None:
+                return None
+            values = straight.scalar(qs, w, al)
+        except (ArithmeticError, ValueError, TypeError):    # a domain error, a division
+            return None                                     # by 0, no rate given
+        if values is None:
+            return None
+        result = self._tabled(mech, np.array(values), Later(solver, qs, w, al, straight.order))
+        if q is None:       # the file's own position: what the figure check says of it
+            from linkcli.kinematics.solvers import figure_cautions
+            result.cautions = figure_cautions(mech, self.method, self.tol)
+        return result
+
+    def _straight_array(self, mech, solver, straight, qs, w, al):
+        """:meth:`evaluate` of a 1-D array of at most BLOCK driver values (SI) by the
+        straight-line solve; None as :meth:`_one_position`."""
+        if qs.ndim != 1 or qs.size > BLOCK or not qs.size or w is None or al is None or \
+                any(np.ndim(x) and np.shape(x) != qs.shape for x in (w, al)):
+            return None
+        table = straight.array(qs, w, al)
+        return None if table is None else \
+            self._tabled(mech, table, Later(solver, qs, w, al, straight.order))
 
     @property
     def _blockwise(self) -> bool:
@@ -254,8 +313,16 @@ class Plan:
             return None
         table = np.empty((len(self.names), qs.size))
 
+        straight = self._straight_of(solver, order, now=True)
+
         def solve(lo):
             hi = min(qs.size, lo + BLOCK)
+            if straight is not None:
+                part = straight.array(qs[lo:hi], qd[lo:hi] if np.ndim(qd) else qd,
+                                      qdd[lo:hi] if np.ndim(qdd) else qdd)
+                if part is not None:
+                    table[:, lo:hi] = part[:len(self.names)]
+                    return
             part = solved(solver, order, qs[lo:hi], qd[lo:hi] if np.ndim(qd) else qd,
                            qdd[lo:hi] if np.ndim(qdd) else qdd)
             for kernel in self.kernels:
@@ -375,6 +442,16 @@ def solved(solver, order, q, qd, qdd):
     if order >= 2:
         solver.accelerations(kin, qdd)
     return kin
+
+
+def _number(x, factor):
+    """``x`` times ``factor`` where ``x`` is one number (a float, an int, a 0-d array), else
+    None."""
+    if type(x) is float or type(x) is int:
+        return x * factor
+    if type(x) is np.ndarray and not x.ndim or isinstance(x, np.floating):
+        return float(x) * factor
+    return None
 
 
 def _collect_each(mech, solver, kin, names, result):

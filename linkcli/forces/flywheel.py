@@ -27,8 +27,10 @@ from linkcli.errors import RegimeError
 from linkcli.forces.regime import (Cycle, Load, Regime, at_speed, balance_speed,
                                     check_balance, extreme, regime, work)
 
-#: the relative tolerance of the exact flywheel's coefficient (above the shooting's noise)
-XTOL = 1e-9
+#: the relative tolerance of the exact flywheel's coefficient: the energy method's, and the
+#: shooting's (above its noise, about 1e-8 / delta)
+XTOL = 1e-11
+SHOT_XTOL = 1e-7
 
 
 @dataclass(frozen=True)
@@ -123,7 +125,8 @@ def _solve(bare: Cycle, fluctuation: float, mean_speed, guess: float):
         found[log_j] = reg
         return math.log(reg.fluctuation / fluctuation)
 
-    root = _secant(gap, math.log(max(guess, 1e-300)))
+    tol = SHOT_XTOL if bare.speed_dependent else XTOL
+    root = _secant(gap, math.log(max(guess, 1e-300)), tol)
     if root is None:
         high = math.log(max(guess, 1e-300)) + 0.5
         while gap(high) > 0:
@@ -131,20 +134,21 @@ def _solve(bare: Cycle, fluctuation: float, mean_speed, guess: float):
         low = high - 1.0
         while _gap_or_stop(gap, low) < 0:
             low -= 1.0
-        root = brentq(gap, low, high, xtol=XTOL, rtol=XTOL)
+        root = brentq(gap, low, high, xtol=tol, rtol=tol)
     reg = found.get(root) or regime(bare.with_flywheel(math.exp(root)), mean_speed)
     return math.exp(root), reg
 
 
-def _secant(gap, x0, steps=12):
-    """The root of gap from x0 and x0 - 0.05 by the secant method, or None."""
+def _secant(gap, x0, tol, steps=12):
+    """The root of gap from x0 and x0 -+ 0.05 by the secant method (|gap| within ``tol``),
+    or None."""
     try:
         x1, g1 = x0, gap(x0)
         x2, g2 = x0 - 0.05 if g1 < 0 else x0 + 0.05, None
         g2 = gap(x2)
         for _ in range(steps):
-            if abs(g2) <= XTOL or g2 == g1 or abs(x2 - x1) <= XTOL:
-                return x2 if abs(g2) <= 10 * XTOL else None
+            if abs(g2) <= tol or g2 == g1 or abs(x2 - x1) <= tol:
+                return x2 if abs(g2) <= 10 * tol else None
             x1, g1, x2 = x2, g2, x2 - g2 * (x2 - x1) / (g2 - g1)
             g2 = gap(x2)
     except RegimeError:

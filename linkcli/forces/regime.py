@@ -386,7 +386,7 @@ def shoot(cycle: Cycle) -> Regime:
             E0 *= 2.0
             continue
         F = end - E0
-        if abs(F) <= 100 * RTOL * scale:
+        if abs(F) <= 10 * RTOL * scale:
             if S >= 1.0:
                 raise RegimeError(f"the periodic orbit (energy {E0:.6g} J at q0) repels: "
                                   f"its multiplier over a cycle is {S:.6g} >= 1, so the "

@@ -46,12 +46,34 @@ def _kind(mech, name):
 def _evaluate(mech, q, qdot, qddot, names, method, tol) -> Result:
     """``names`` (none an expression) by the path they need."""
     if mech.elements is None:       # a file with a driver: no vibration modules to import
+        from linkcli.runs import machine_motion
+        if machine_motion.asks_motion(mech, names):     # the motion in time
+            return _with_motion(mech, q, qdot, qddot, names, method, tol)
         if _asks_limits(mech, names):   # maxima, strokes ...: runs.limits
             from linkcli.runs.limits import report as limit_report
             return limit_report.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
         return quantities.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
     from linkcli.answers.quantities import vibration
     return vibration.evaluate(mech, list(names), Result(mech))
+
+
+def _with_motion(mech, q, qdot, qddot, names, method, tol) -> Result:
+    """The motion's answers (runs.machine_motion: one value each, repeated at every driver
+    value of ``q``) with the others by their own path."""
+    from linkcli.runs import machine_motion
+    others = [n for n in names if _kind(mech, n) != "motion"]
+    result = _evaluate(mech, q, qdot, qddot, others, method, tol)
+    found = machine_motion.motion_values(mech, [n for n in names if n not in others])
+    shape = np.shape(getattr(result.kinematics, "q", None)) if q is not None else ()
+    values = {}
+    for name in names:
+        if name in found:
+            value, result.units[name] = found[name]
+            values[name] = np.full(shape, value) if shape else value
+        else:
+            values[name] = result.values[name]
+    result.values = values
+    return result
 
 
 def refuse_driving(mech, q=None, qdot=None, qddot=None, method="closed") -> None:

@@ -33,13 +33,15 @@ from linkcli.input.oscillation import OscillationSection
 from linkcli.input.dynamics import DynamicsReader
 from linkcli.input.elements import ElementsReader
 from linkcli.input.loads import LoadsSection
+from linkcli.input.machine import MachineSection, is_machine
+from linkcli.input.regime import RegimeSection
 from linkcli.input.reader import (NAME, UNKNOWN, InputErrors, Reader, _kind, _Skip,
                                   reserved_parameter)
 
 TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points", "links",
             "actuators", "sliders", "driver", "coordinates", "loads", "quantities", "report",
             "keys", "dynamics", "springs", "dampers", "excitation", "initial", "equilibrium",
-            "rolling", "cords", "statement", "quiz", "find"}
+            "rolling", "cords", "statement", "quiz", "find", "motion"}
 VIBRATION_KEYS = ("springs", "dampers", "excitation", "initial", "equilibrium")
 
 __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS", "UNKNOWN",
@@ -48,7 +50,8 @@ __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS
 
 class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSection,
              TextbookQuantities, ForceQuantities, LimitsSection, VibrationQuantities,
-             ReportSection, KeysSection, DerivedSection, OscillationSection, FindSection):
+             ReportSection, KeysSection, DerivedSection, OscillationSection, FindSection,
+             MachineSection, RegimeSection):
     """The whole document: units, params, frame and points, then each section."""
 
     def parse(self) -> Mechanism:
@@ -86,8 +89,15 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
                     self.error((key,), f"'{key}' belongs to a vibration problem, which declares "
                                "its coordinates", hint="replace 'driver:' by 'coordinates:', "
                                "e.g. coordinates: {theta: {angle: [O, A]}}")
+        self.driver_base = driver.base if driver is not None else "angle"
+        self.driver_of_file = driver
+        machine = self.machine = is_machine(data)
+        if machine and "coordinates" in data:
+            self.error(("coordinates",), "the motion under given loads is of a mechanism with "
+                       "one driver", hint="replace 'coordinates:' by 'driver:'")
         loads = self.block(self.loads, data, units, pool, bodies, actuators, driver,
-                           "coordinates" not in data) or {}
+                           "coordinates" not in data and not machine) or {}
+        motion = self.block(self.motion_section, data, units)
         self.vibration = {"coordinates": {c.name for c in coordinates},
                           "springs": self.element_names(data, "springs"),
                           "dampers": self.element_names(data, "dampers")}
@@ -109,7 +119,8 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
                          as_drawn=self.k_override is None or self.k_override == data.get("k"),
                          statement=self.block(self.statement, data) or "",
                          quiz=self.block(self.quiz, data, report) or Quiz(),
-                         params={n: v for n, v in self.names.items()}, design=design)
+                         params={n: v for n, v in self.names.items()}, design=design,
+                         motion=motion)
         if "dynamics" in data:
             mech.dynamics = DynamicsReader(self, mech, _Skip).run(data["dynamics"])
         if coordinates:       # after the dynamics: an element may name a rolling disc

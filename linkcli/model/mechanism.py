@@ -139,7 +139,9 @@ class Load:
     kind 'force': at point ``target`` along unit direction ``direction``
     (complex), magnitude ``value`` (N); 'torque': on body ``target`` (N m,
     counter-clockwise); 'axial': on actuator ``target`` (N, > 0 pushes the
-    ends apart); 'driver': generalised force on q (N or N m).  A pressure load is
+    ends apart); 'driver': generalised force on q (N or N m); 'motor': a torque on body
+    ``target`` given by its characteristic ``motor`` of the body's speed; 'brake': a torque
+    ``value`` >= 0 on body ``target`` against its turning.  A pressure load is
     the force or axial load p A, with ``pressure`` = (p in Pa, A in m^2, the bore D
     in m or None) as the problem states them.
     """
@@ -150,6 +152,10 @@ class Load:
     direction: complex
     value: float | None
     pressure: tuple | None = None
+    #: machine dynamics (model.machine): the driver's window (q1, q2) it acts in, None:
+    #: always; a motor's Characteristic ('motor' loads); a brake's torque is ``value``
+    window: tuple | None = None
+    motor: object = None
 
 
 @dataclass(frozen=True)
@@ -247,7 +253,14 @@ LIMITS = ("maximum", "minimum", "at_maximum", "at_minimum", "stroke", "time_rati
           "stroke_time")
 
 #: the report's sections of named quantities, in the order of the answer sheet
-REPORT_SECTIONS = ("design", "position", "velocity", "acceleration", "statics", "vibration")
+REPORT_SECTIONS = ("design", "position", "velocity", "acceleration", "statics", "vibration",
+                   "motion")
+
+#: quantity kinds of machine dynamics (input.machine): one value at the driver's state, or
+#: of the motion in time (kind 'motion': ``a`` the answer, ``b`` the event, ``time`` its
+#: value in SI)
+MACHINE = ("reduced_inertia", "reduced_inertia_slope", "reduced_torque", "motion", "regime",
+           "flywheel")
 
 #: quantity kinds of the vibration analysis (each is also the YAML key that asks for it)
 VIBRATION = ("natural_frequency", "damped_frequency", "damping_ratio", "mode_shape",
@@ -340,6 +353,8 @@ class Mechanism:
     source: object = None
     #: a design question (``find:``, model.design.Design), None when absent
     design: object = None
+    #: the ``motion:`` section of machine dynamics (model.machine.MotionSpec), None when absent
+    motion: object = None
 
     def __post_init__(self):
         if not self.coordinates:

@@ -29,6 +29,14 @@ from linkcli.input.quantities import EITHER, FORCES, LEVEL, RATES, SUFFIX, kind_
 SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration", "points", "motion")
 
 
+#: the sections whose names are the quantities of one analysis, and what they are
+OWN_SECTIONS = {"motion": MACHINE, "vibration": VIBRATION}
+OWN_WORDS = {"motion": ("machine dynamics", "reduced inertias and torques and the answers of "
+                        "the motion in time"),
+             "vibration": ("the vibration analysis", "natural frequencies, modes, matrices, "
+                           "equilibrium, amplitudes")}
+
+
 def split_base(name: str, order: int) -> str:
     return name[:len(name) - len(SUFFIX[order])]
 
@@ -80,20 +88,14 @@ class ReportSection:
         if base[0] in quantities and quantities[base[0]].kind == EXPR:
             self.rate_of(name, quantities[base[0]], base[1], path)
             return True             # an expression: in the section its reader expects
-        machine = name in quantities and quantities[name].kind in MACHINE
-        if section == "motion" or machine:
-            if not machine or section != "motion":
-                raise self.error(path, f"'{name}' is {'' if machine else 'not '}a quantity of "
-                                 "machine dynamics", hint="the 'motion' section lists reduced "
-                                 "inertias and torques and the answers of the motion in time")
-            return True
-        vibration = name in quantities and quantities[name].kind in VIBRATION
-        if section == "vibration" or vibration:
-            if not vibration or section != "vibration":
-                raise self.error(path, f"'{name}' is {'' if vibration else 'not '}a quantity of "
-                                 "the vibration analysis", hint="the 'vibration' section lists "
-                                 "natural frequencies, modes, matrices, equilibrium, amplitudes")
-            return True
+        for own, kinds in OWN_SECTIONS.items():
+            belongs = name in quantities and quantities[name].kind in kinds
+            if section == own or belongs:
+                if not belongs or section != own:
+                    what, lists = OWN_WORDS[own]
+                    raise self.error(path, f"'{name}' is {'' if belongs else 'not '}a quantity "
+                                     f"of {what}", hint=f"the '{own}' section lists {lists}")
+                return True
         if section == "statics":
             if name in quantities and quantities[name].kind in FORCES:
                 self.balanced(name, quantities[name], path)

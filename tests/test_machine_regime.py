@@ -138,3 +138,16 @@ def test_regime_error_is_a_solve_error():
     with pytest.raises(RegimeError) as err:
         values(crankshaft(resisting=5100))
     assert err.value.exit_code == 3 and err.value.reason == "unbalanced"
+
+
+def test_schema_states_the_regimes_tables():
+    import json
+
+    from linkcli.input.regime import MOTION_KEYS
+    from linkcli.model.regime import FLYWHEEL, REGIME
+    schema = json.load(open(os.path.join(ROOT, "linkcli/input/schema.json")))
+    defs = schema["$defs"]
+    assert defs["regimeQuantity"]["properties"]["regime"]["enum"] == list(REGIME)
+    assert defs["flywheelQuantity"]["properties"]["flywheel"]["enum"] == list(FLYWHEEL)
+    motion = next(a for a in schema["properties"]["motion"]["anyOf"] if "properties" in a)
+    assert MOTION_KEYS <= set(motion["properties"])

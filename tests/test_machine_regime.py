@@ -28,7 +28,7 @@ points: {{A: [1, 0]}}
 links: {{crank: {{points: [O, A], length: 1}}}}
 driver: {{angle: [O, A], value: 0, rate: 300}}
 loads:
-  T: {{type: torque, on: crank, value: "5000 + 1500*sin(3*q*deg)"}}
+  T: {{type: motor, on: crank, torque: "5000 + 1500*sin(3*q*deg)"}}
   R: {{type: brake, on: crank, value: {resisting}}}
 dynamics: {{bodies: {{crank: {{inertia: If, center: O}}}}}}
 motion:
@@ -43,7 +43,7 @@ report: {{motion: [CS, dE, Ie, Ia]}}
 {find}"""
 
 FIND = """find:
-  unknowns: {If: {between: [1, 100000]}}
+  unknowns: {If: {between: [10, 1000]}}
   targets: {CS: 0.02}
 """
 

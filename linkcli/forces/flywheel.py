@@ -36,7 +36,8 @@ SHOT_XTOL = 1e-7
 @dataclass(frozen=True)
 class Flywheel:
     """The flywheel for the coefficient ``fluctuation``: ``approximate`` (the books'
-    formula) and ``exact`` (kg m^2), and the regime the exact one gives."""
+    formula; <= 0 where by it the machine's own inertia is enough) and ``exact`` (kg m^2),
+    and the regime the exact one gives."""
 
     fluctuation: float
     approximate: float
@@ -79,7 +80,7 @@ def flywheel(cycle: Cycle, fluctuation: float, mean_speed: float | None = None) 
     """Both flywheels for the coefficient ``fluctuation``; the cycle's own flywheel is
     replaced by the one sought.  Refused where no flywheel gives it: the machine alone
     fluctuates less (a negative flywheel would be needed)."""
-    guess, _, _ = approximate(cycle, fluctuation, mean_speed)
+    guess, dE, w = approximate(cycle, fluctuation, mean_speed)
     bare = cycle.with_flywheel(0.0)
     alone = _machine_alone(bare, mean_speed)
     if alone is not None and alone.fluctuation <= fluctuation:
@@ -87,7 +88,8 @@ def flywheel(cycle: Cycle, fluctuation: float, mean_speed: float | None = None) 
                           f"the machine alone gives {alone.fluctuation:.6g}, and a flywheel "
                           "only lowers it", reason="no flywheel",
                           values=(fluctuation, alone.fluctuation))
-    exact, reg = _solve(bare, fluctuation, mean_speed, guess)
+    exact, reg = _solve(bare, fluctuation, mean_speed,
+                        max(guess, 0.1 * dE / (w * w * fluctuation)))
     return Flywheel(fluctuation, guess, exact, reg)
 
 

@@ -212,7 +212,19 @@ def flywheel_answer(mech, quantity, spec) -> float:
         mean = None if cycle.speed_dependent else _mean_speed(mech, spec, cycle)
         store["flywheel"] = size_flywheel(cycle, spec.fluctuation, mean)
     fly = store["flywheel"]
-    return fly.exact if quantity.a == "exact" else fly.approximate
+    return fly.exact if quantity.a == "exact" else _books(mech, fly.approximate, spec)
+
+
+def _books(mech, value, spec) -> float:
+    """The books' flywheel, refused where their formula finds the machine's own inertia
+    enough (a flywheel of no or negative inertia is no answer)."""
+    if value <= 0:
+        raise RegimeError(f"by the books' formula DeltaE / (w_m^2 delta) the machine's own "
+                          f"inertia already keeps the coefficient of fluctuation below "
+                          f"{spec.fluctuation:.6g}: no flywheel is needed (the formula's "
+                          f"flywheel is {value:.6g} kg m^2)", reason="no flywheel",
+                          values=(spec.fluctuation, value), file=mech.file)
+    return value
 
 
 # --- a diagram of areas --------------------------------------------------------------------
@@ -259,4 +271,4 @@ def _areas_flywheel(mech, quantity, spec) -> float:
                           reason="areas", file=mech.file)
     dE, _, machine = diagram(mech, spec)
     w = spec.mean_speed
-    return dE / (w * w * spec.fluctuation) - machine
+    return _books(mech, dE / (w * w * spec.fluctuation) - machine, spec)

@@ -206,15 +206,17 @@ def check_balance(cycle: Cycle, w: float = 0.0) -> None:
     """Refuse a cycle whose mean torque is not zero: each cycle then adds (or takes) the
     work W(P), so the machine runs away (or stops) and has no periodic regime."""
     q = cycle.q()
-    total = float(cycle.Q(q[:-1], np.full(q.size - 1, float(w))).mean())
-    scale = float(np.abs(cycle.Q(q, np.full(q.shape, float(w)))).max())
+    ww = np.full(q.shape, float(w))
+    total = float(cycle.Q(q[:-1], ww[:-1]).mean())
+    scale = max(float(np.abs(np.broadcast_to(ld.torque(q, ww), q.shape)).max())
+                for ld in cycle.loads) if cycle.loads else 0.0
     if abs(total) <= BALANCED * scale:
         return
     means = cycle.means(w)
     parts = ", ".join(f"{name} {value:.6g}" for name, value in means.items())
     fate = "speeds up every cycle (runs away)" if total > 0 else "slows down and stops"
     raise RegimeError(f"no periodic regime: the mean torques over a cycle are {parts}, their "
-                      f"sum {total:.6g} is {abs(total) / scale:.3g} of the largest torque "
+                      f"sum {total:.6g} is {abs(total) / scale:.3g} of the largest load's "
                       f"{scale:.6g}, not 0: the machine {fate}", reason="unbalanced",
                       values=(total, scale), hint="a regime needs the mean driving torque "
                       "equal to the mean resisting one")

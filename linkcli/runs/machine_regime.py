@@ -45,7 +45,10 @@ def regime_values(mech, names) -> dict:
     out = {}
     for name in names:
         quantity = mech.quantities[name]
-        value = answer(mech, quantity)
+        try:
+            value = answer(mech, quantity)
+        except RegimeError as err:
+            raise err.located(mech.file) from None
         unit, factor = display(mech, quantity)
         out[name] = (value / factor, unit)
     return out

@@ -423,6 +423,15 @@ def _checked(mech, result, places, tolerance, file_k, decimals, left_out=frozens
     return boxes
 
 
+def refuse_one_question(doc, ks) -> None:
+    """Refuse several digits ``ks`` of a file that does not depend on k: they would all be
+    the same question."""
+    if ks is not None and len(ks) > 1 and doc.data.get("k") is None:
+        raise InputError(f"the file does not depend on k (it sets no default 'k'), so the "
+                         f"digits {', '.join(str(k) for k in ks)} would be one question",
+                         file=doc.name, key="--k", hint="leave --k out for one question")
+
+
 def export(doc, ks, decimals=None, tolerance=None, lang="it", figure=True,
            method="closed", no_given=False) -> str:
     """The Moodle XML text for the document ``doc`` at digits ``ks`` (None: the file's own).
@@ -436,10 +445,7 @@ def export(doc, ks, decimals=None, tolerance=None, lang="it", figure=True,
     if not report_names(base):
         raise InputError("the file has no report to ask", file=base.file, key="report",
                          hint="list the quantities the answer sheet asks for under 'report'")
-    if ks is not None and len(ks) > 1 and doc.data.get("k") is None:
-        raise InputError(f"the file does not depend on k (it sets no default 'k'), so the "
-                         f"digits {', '.join(str(k) for k in ks)} would be one question",
-                         file=base.file, key="--k", hint="leave --k out for one question")
+    refuse_one_question(doc, ks)
     picture = figure if callable(figure) else _exam_picture(lang, method) if figure else None
     quiz = ET.Element("quiz")
     category = ET.SubElement(ET.SubElement(quiz, "question", type="category"), "category")

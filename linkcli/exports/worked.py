@@ -26,6 +26,7 @@ from linkcli.runs.sheet import evaluate
 from linkcli.texts.data import data_lines
 from linkcli.exports.text import fence, markdown, refuse_unfit, visible
 from linkcli.input.document import build
+from linkcli.kinematics.closed_form import unit_rates
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import REPORT_SECTIONS
 from linkcli.model.rounding import noise_free
@@ -117,7 +118,7 @@ def blocks(mech, lang="en", figure=True, method="closed") -> list:
     out += [Block("heading", w["data"]), Block("lines", data_lines(mech, lang, solution))]
     out += [Block("heading", w["structure"]),
             Block("lines", [say(x) for x in explain(mech, method).splitlines()[2:]])]
-    if mech.elements is None and method == "closed":
+    if mech.elements is None and method == "closed" and len(mech.coordinates) == 1:
         out += _kinematics(solved, w, say)
     out.append(Block("heading", w["results"]))
     decimals = mech.report.get("decimals", 1)
@@ -220,7 +221,7 @@ def _shown(point: str) -> str:
 
 def _statics(mech, solver, kin, w, say=str):
     from linkcli.forces.statics import coefficient
-    unit_kin = solver.velocities(kin.at_rest(), np.ones_like(kin.q))
+    unit_kin = unit_rates(solver, kin)
     rows = []
     for load in mech.loads.values():
         c = float(np.ravel(coefficient(mech, load, kin.pos, unit_kin.vel))[0])

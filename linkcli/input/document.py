@@ -27,6 +27,7 @@ from linkcli.input.report import SECTIONS, ReportSection
 from linkcli.input.keys import KeysSection
 from linkcli.input.bodies import BodiesSection
 from linkcli.input.contacts import ContactsSection
+from linkcli.input.gears import GearsSection
 from linkcli.input.derived import DerivedSection
 from linkcli.input.find import FindSection
 from linkcli.input.oscillation import OscillationSection
@@ -39,9 +40,10 @@ from linkcli.input.reader import (NAME, UNKNOWN, InputErrors, Reader, _kind, _Sk
                                   reserved_parameter)
 
 TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points", "links",
-            "actuators", "sliders", "driver", "coordinates", "loads", "quantities", "report",
+            "actuators", "sliders", "driver", "drivers", "coordinates", "loads", "quantities",
+            "report",
             "keys", "dynamics", "springs", "dampers", "excitation", "initial", "equilibrium",
-            "rolling", "cords", "statement", "quiz", "find", "motion"}
+            "rolling", "cords", "statement", "quiz", "find", "motion", "gears"}
 VIBRATION_KEYS = ("springs", "dampers", "excitation", "initial", "equilibrium")
 
 __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS", "UNKNOWN",
@@ -51,7 +53,7 @@ __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS
 class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSection,
              TextbookQuantities, ForceQuantities, LimitsSection, VibrationQuantities,
              ReportSection, KeysSection, DerivedSection, OscillationSection, FindSection,
-             MachineSection, RegimeSection):
+             MachineSection, RegimeSection, GearsSection):
     """The whole document: units, params, frame and points, then each section."""
 
     def parse(self) -> Mechanism:
@@ -72,18 +74,20 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
         self.block(self.links, data, units, pool, bodies)
         actuators = self.block(self.actuators, data, pool, bodies) or {}
         self.block(self.sliders, data, units, pool, bodies, fixed)
+        self.gear_table = self.block(self.gears, data, units) or {}
         rolling = self.block(self.contacts, data, units, pool, bodies, fixed, moving) or {}
         coordinates = ()
         self.file_units = units
+        self.inputs_declared(data)
         if "coordinates" in data:
-            if "driver" in data:
-                self.error(("driver",), "a file has either a driver (one degree of freedom, "
-                           "with its rates) or coordinates (vibrations), not both",
-                           hint="remove one of 'driver' and 'coordinates'")
             coordinates = self.block(self.coordinates, data, units, pool, fixed, moving) or ()
             driver = coordinates[0] if coordinates else None
         else:
-            driver = self.block(self.driver, data, units, pool, actuators)
+            if "drivers" in data:
+                coordinates = self.block(self.drivers, data, units, pool) or ()
+                driver = coordinates[0] if coordinates else None
+            else:
+                driver = self.block(self.driver, data, units, pool, actuators)
             for key in VIBRATION_KEYS:
                 if key in data:
                     self.error((key,), f"'{key}' belongs to a vibration problem, which declares "
@@ -98,10 +102,12 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
         loads = self.block(self.loads, data, units, pool, bodies, actuators, driver,
                            "coordinates" not in data and not machine) or {}
         motion = self.block(self.motion_section, data, units)
-        self.vibration = {"coordinates": {c.name for c in coordinates},
+        self.vibration = {"coordinates": {c.name for c in coordinates}
+                          if "coordinates" in data else set(),
                           "springs": self.element_names(data, "springs"),
                           "dampers": self.element_names(data, "dampers")}
-        quantities = self.block(self.quantities, data, pool, loads, driver) or {}
+        quantities = self.block(self.quantities, data, pool, loads, driver,
+                                coordinates if "drivers" in data else ()) or {}
         design = self.block(self.find, data, quantities)
         report = self.block(self.report, data, quantities, loads, pool) or {}
         if design is not None:
@@ -120,10 +126,10 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
                          statement=self.block(self.statement, data) or "",
                          quiz=self.block(self.quiz, data, report) or Quiz(),
                          params={n: v for n, v in self.names.items()}, design=design,
-                         motion=motion)
+                         motion=motion, gears=self.gear_table)
         if "dynamics" in data:
             mech.dynamics = DynamicsReader(self, mech, _Skip).run(data["dynamics"])
-        if coordinates:       # after the dynamics: an element may name a rolling disc
+        if "coordinates" in data:   # after the dynamics: an element may name a rolling disc
             mech.elements = ElementsReader(self, mech, _Skip).run(data)
             for load in loads.values():
                 if load.kind == "driver":
@@ -137,6 +143,16 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
         if self.errors:
             raise InputErrors(self.errors)
         return mech
+
+    def inputs_declared(self, data) -> None:
+        """A file declares its inputs once: ``driver`` (one), ``drivers`` (several, each
+        driven) or ``coordinates`` (a vibration problem's)."""
+        given = [k for k in ("driver", "drivers", "coordinates") if k in data]
+        if len(given) > 1:
+            self.error((given[1],), f"a file has one of 'driver' (one degree of freedom), "
+                       f"'drivers' (several, each with its rates) and 'coordinates' "
+                       f"(vibrations), not both '{given[0]}' and '{given[1]}'",
+                       hint=f"remove one of '{given[0]}' and '{given[1]}'")
 
     def statement(self, data) -> str:
         value = data.get("statement", "")

@@ -21,9 +21,12 @@ class LoadsSection:
     """``driver`` and ``loads`` (a mixin of the Parser)."""
 
     def driver(self, data, units, pool, actuators) -> Driver:
-        path = ("driver",)
-        spec = self.mapping(self.get(data, (), "driver"), path,
-                            {"angle", "length", "x", "y", "value", "rate", "accel"},
+        return self.driven(self.get(data, (), "driver"), ("driver",), units, pool)
+
+    def driven(self, value, path, units, pool, name="q") -> Driver:
+        """A driver's coordinate, its value (the figure's) and its rate and accel (0 when
+        not given), in SI."""
+        spec = self.mapping(value, path, {"angle", "length", "x", "y", "value", "rate", "accel"},
                             ("value",))
         kind, a, b = self.coordinate_kind(spec, path, pool)
         base = "angle" if kind == "angle" else "length"
@@ -32,7 +35,33 @@ class LoadsSection:
                        for order, key in ((1, "rate"), (2, "accel")))
         if kind == "length" and value <= 0:
             raise self.error(path + ("value",), "a driving length must be positive")
-        return Driver(kind, a, b, value, rate, accel)
+        return Driver(kind, a, b, value, rate, accel, name)
+
+    def drivers(self, data, units, pool) -> tuple:
+        """``drivers``: every input of a mechanism of several degrees of freedom, each named
+        and driven as ``driver:`` is (its value, rate and accel); the first is also ``q``."""
+        path = ("drivers",)
+        spec = self.mapping(data["drivers"], path)
+        if not spec:
+            raise self.error(path, "give at least one driver, e.g. drivers: {theta1: {angle: "
+                             "[O, A], value: 30, rate: 10}}")
+        out = []
+        for name, value in spec.items():
+            d = self.block(self.named_driver, name, value, path + (name,), units, pool)
+            if d is None:
+                continue
+            twin = next((o for o in out if o.same_coordinate(d)), None)
+            if twin is not None:
+                self.error(path + (name,), f"driver '{name}' drives the {d.words}, "
+                           f"which driver '{twin.name}' already fixes: one coordinate takes "
+                           "one driver", hint=f"drive another coordinate, or remove '{name}'")
+                continue
+            out.append(d)
+        return tuple(out)
+
+    def named_driver(self, name, value, path, units, pool) -> Driver:
+        self.name(name, path, what="driver")
+        return self.driven(value, path, units, pool, name)
 
     def driver_rate(self, spec, path, key, base, order, units) -> float:
         """The driver's rate of ``order`` (``key``: rate or accel) in SI, from the file's
@@ -277,3 +306,4 @@ class LoadsSection:
         frame = data["frame"]
         z = self.xy(frame[q], ("frame", q), units) - self.xy(frame[p], ("frame", p), units)
         return z / abs(z)
+

@@ -111,11 +111,13 @@ class Rolling:
 
 @dataclass(frozen=True)
 class Driver:
-    """An independent coordinate: the driver q of a 1-DOF file, or one of ``coordinates``.
+    """An independent coordinate: the driver q of a 1-DOF file, one of ``drivers`` (a
+    mechanism of several degrees of freedom, each input driven) or one of ``coordinates``.
 
     kind 'angle': q is the angle of the vector a->b; 'length': q = |b - a|;
     'x' / 'y': q is that coordinate of point ``a``.  ``value`` is the
-    figure's; ``rate`` and ``accel`` are the driver's (0 for coordinates).
+    figure's; ``rate`` and ``accel`` are the driver's (0 for coordinates); ``name`` is 'q'
+    for ``driver:``, the file's name of it otherwise.
     """
 
     kind: str
@@ -130,6 +132,19 @@ class Driver:
     def base(self) -> str:
         """'angle' or 'length': the kind of unit q is measured in."""
         return "angle" if self.kind == "angle" else "length"
+
+    @property
+    def words(self) -> str:
+        """What it drives, in words: 'angle of A->B', 'length AB', 'x of B'."""
+        return {"angle": f"angle of {self.a}->{self.b}", "length": f"length {self.a}{self.b}",
+                "x": f"x of {self.a}", "y": f"y of {self.a}"}[self.kind]
+
+    def same_coordinate(self, other: "Driver") -> bool:
+        """Whether ``other`` measures the same coordinate: the same kind of the same point,
+        or of the same two points (either way round)."""
+        if self.kind != other.kind:
+            return False
+        return self.a == other.a if self.b is None else {self.a, self.b} == {other.a, other.b}
 
 
 @dataclass(frozen=True)
@@ -355,6 +370,8 @@ class Mechanism:
     design: object = None
     #: the ``motion:`` section of machine dynamics (model.machine.MotionSpec), None when absent
     motion: object = None
+    #: name -> model.gears.Gear: the gears given by their teeth (``gears:``)
+    gears: dict = field(default_factory=dict)
 
     def __post_init__(self):
         if not self.coordinates:

@@ -10,6 +10,7 @@ import numpy as np
 from linkcli.answers.quantities.textbook import located
 from linkcli.errors import InputError
 from linkcli.forces import motion
+from linkcli.kinematics.closed_form import unit_rates
 from linkcli.kinematics.refusals import where_text
 from linkcli.forces.statics import unknown_load
 from linkcli.model.mechanism import split_rate
@@ -27,7 +28,7 @@ def loads_at(mech, solver, kin, names, context=None):
     values = {n: load.value for n, load in mech.loads.items()}
     if mech.elements is not None:   # a vibration problem: every load known (input.loads)
         return values
-    unit_kin = solver.velocities(kin.at_rest(), np.ones_like(kin.q))
+    unit_kin = unit_rates(solver, kin)
     unknown = mech.unknown_load()
     extra = 0.0
     if mech.dynamics is not None:   # inertia, gravity, friction (d'Alembert)

@@ -11,6 +11,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.answers.memory import LONG, keep_freed_memory
+from linkcli.answers.quantities.gearing import gear_value
+from linkcli.answers.quantities.drive import Drive
 from linkcli.answers.quantities.forces import JOINT_FORCES, force_value, loads_at
 from linkcli.answers.quantities.geometry import override_unit, signed_angle, vector, \
     wrap_angle
@@ -22,6 +24,7 @@ from linkcli.kinematics.solvers import solver_for
 from linkcli.kinematics.straight import straight_of
 from linkcli.model.mechanism import MACHINE, REPORT_SECTIONS, VIBRATION, split_rate
 from linkcli.input.quantities import LEVEL
+from linkcli.input.gears import GEARING
 from linkcli.model.units import FORCE, TORQUE
 
 #: a long array of driver values is solved this many positions at a time (see Plan._in_blocks)
@@ -107,7 +110,7 @@ def report_names(mech):
 
 def require_driver(mech, what: str) -> None:
     """Refuse a request that varies the driver on a file declared with coordinates."""
-    if mech.elements is not None or len(mech.coordinates) > 1:
+    if mech.elements is not None:
         raise InputError(f"{what} varies the driver, and this file declares coordinates "
                          "(a vibration problem) instead", file=mech.file,
                          hint="use 'linkcli solve', 'linkcli sweep --vary NAME=FROM:TO:STEPS' "
@@ -212,13 +215,14 @@ class Plan:
         names need, refusing unassembled and singular positions, and evaluate them."""
         solver = solver_for(mech, self.method, self.tol)
         order = self.order(mech)
-        straight = self._straight_of(solver, order)
+        single = len(mech.coordinates) == 1      # several drivers: the general path
+        straight = self._straight_of(solver, order) if single else None
         if straight is not None:
             result = self._one_position(mech, solver, straight, q, qdot, qddot)
             if result is not None:
                 return result
-        driver = self._driver_si(mech.driver, q, qdot, qddot)
-        if q is not None and self.probes is not None and np.size(q) <= COMPILED_MOST \
+        driver = self._driver_si(mech, q, qdot, qddot)
+        if single and q is not None and self.probes is not None and np.size(q) <= COMPILED_MOST \
                 and compiled() is not None:
             result = self._compiled(mech, solver, order, *driver)
             if result is not None:
@@ -229,7 +233,7 @@ class Plan:
                 return result
         if q is not None and np.size(q) >= LONG:
             keep_freed_memory()
-        if q is not None and np.size(q) > BLOCK and self._blockwise:
+        if single and q is not None and np.size(q) > BLOCK and self._blockwise:
             result = self._in_blocks(mech, solver, order, *driver)
             if result is not None:
                 return result
@@ -294,12 +298,16 @@ class Plan:
         return self.method == "closed" and not self.generic and not self.wants_loads \
             and not self.points
 
-    def _driver_si(self, driver, q, qdot, qddot) -> tuple:
-        """(q, q', q'') in SI from display units, the file's values where not given."""
+    def _driver_si(self, mech, q, qdot, qddot) -> tuple:
+        """(q, q', q'') in SI from display units, the file's values where not given.  With
+        several drivers each is a tuple over them: ``q`` and its rates are the first
+        driver's, the others' are the file's (``Drive``)."""
         f0, f1, f2 = self.q_factors
-        return (driver.value if q is None else np.asarray(q, float) * f0,
-                driver.rate if qdot is None else np.asarray(qdot, float) * f1,
-                driver.accel if qddot is None else np.asarray(qddot, float) * f2)
+        driver = mech.driver
+        first = (driver.value if q is None else np.asarray(q, float) * f0,
+                 driver.rate if qdot is None else np.asarray(qdot, float) * f1,
+                 driver.accel if qddot is None else np.asarray(qddot, float) * f2)
+        return Drive(mech)(*first)
 
     def _in_blocks(self, mech, solver, order, qs, qd, qdd):
         """:meth:`evaluate` of a long 1-D array of driver values, BLOCK positions at a time:
@@ -495,6 +503,8 @@ def value_of(mech, name, kin, loads, context=None):
         from linkcli.model.dimensions import param_unit_name
         value = float(mech.params[base_name])
         return value + 0 * np.asarray(kin.q, dtype=float), param_unit_name(mech, base_name)
+    if quantity.kind in GEARING:
+        return gear_value(mech, quantity, kin)
     if quantity.kind in JOINT_FORCES:
         return force_value(quantity, kin, context or Context(mech, None, kin))
     if quantity.kind in MACHINE:

@@ -399,7 +399,8 @@ class Mechanism:
 
     def load_unit_kind(self, load: Load) -> str:
         """'torque' for a torque or the driver load of an angle driver, else 'force'."""
-        if load.kind == "torque" or load.kind == "driver" and self.driver.kind == "angle":
+        if load.kind in ("torque", "motor", "brake") or \
+                load.kind == "driver" and self.driver.kind == "angle":
             return "torque"
         return "force"
 

@@ -159,8 +159,8 @@ class Equation:
         if not 0 < J < self.limit:
             raise _Blocked(t, q, SolveError(
                 "the reduced inertia J* is zero: nothing with mass moves with the driver"
-                if J <= 0 else f"the reduced inertia J* grows without bound ({J:.4g} SI, "
-                f"{J / self.limit * LIMIT:.3g} times its value at the start)"))
+                if J <= 0 else f"the reduced inertia J* grows without bound "
+                f"({J / self.limit * LIMIT:.3g} times its value at the start)"))
         if hold:
             Q -= hold * math.copysign(1.0, w) if w else max(-hold, min(hold, Q))
         return (Q - 0.5 * dJ * w * w) / J
@@ -356,10 +356,11 @@ def require_start(mech, equation, q0, w0) -> None:
     if abs(Q) > hold and motors * Q > 0:
         return
     unit, factor = display(mech, _torque_quantity())
+    brakes = f", with brakes holding up to {hold / factor:.6g} {unit}" if hold else ""
     raise SolveError(f"the motor cannot start the machine: at rest (q = "
                      f"{_driver_text(mech, q0)}) it gives {motors / factor:.6g} {unit} reduced "
-                     f"to the driver, and the other loads {((Q - motors) / factor):.6g} {unit} "
-                     f"with brakes holding up to {hold / factor:.6g} {unit}",
+                     f"to the driver, and the other loads {((Q - motors) / factor):.6g} {unit}"
+                     f"{brakes}",
                      file=mech.file, key="loads",
                      hint="a larger stall torque, smaller loads at rest, or start at a speed")
 

@@ -26,8 +26,8 @@ def loads_at(mech, solver, kin, names, context=None):
     if not wanted:
         return {}
     values = {n: load.value for n, load in mech.loads.items()}
-    if mech.elements is not None:   # a vibration problem: every load known (input.loads)
-        return values
+    if mech.elements is not None or None not in values.values():
+        return values               # every load known: a vibration problem, a machine's motion
     unit_kin = unit_rates(solver, kin)
     unknown = mech.unknown_load()
     extra = 0.0

@@ -151,3 +151,15 @@ def test_schema_states_the_regimes_tables():
     assert defs["flywheelQuantity"]["properties"]["flywheel"]["enum"] == list(FLYWHEEL)
     motion = next(a for a in schema["properties"]["motion"]["anyOf"] if "properties" in a)
     assert MOTION_KEYS <= set(motion["properties"])
+
+
+def test_turns_per_cycle():
+    """A torque 1500 sin(1.5 q) repeats every two turns: over two turns DeltaE = 2 x 1500 /
+    1.5; over one (the default) its mean is not zero and the regime is refused."""
+    text = crankshaft().replace("sin(3*q*deg)", "sin(1.5*q*deg)")
+    two = text.replace("  flywheel: {{fluctuation: 0.02}}".replace("{{", "{").replace("}}", "}"),
+                       "  flywheel: {fluctuation: 0.02}\n  turns_per_cycle: 2")
+    assert values(two)["dE"] == pytest.approx(2 * 1500 / 1.5, rel=1e-9)
+    with pytest.raises(RegimeError) as err:
+        values(text)
+    assert err.value.reason == "unbalanced"

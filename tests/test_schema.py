@@ -122,6 +122,8 @@ _ALWAYS_LOADER = [           # messages of rules that need the rest of the file
     r"^a 'driver' load needs a driver",
     r"^a vibration problem has no unknown load",
     r"^a file has one of 'driver'",
+    r"^the driver load acts on the driver coordinate",   # 'on' names a driver of 'drivers:'
+    r"^one load per driver must be unknown",
     r"already fixes: one coordinate takes one driver",
     r"^the driver's name .* is taken by",
     r"^a harmonic excitation needs its frequency",

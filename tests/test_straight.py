@@ -298,3 +298,37 @@ def test_generated_source_holds_no_text_of_the_file():
     for function in (fast.function(False), fast.function(True)):
         assert "print_A0_" not in function.__source__
         assert "beta" not in function.__source__
+
+
+def test_the_evaluator_gives_solves_values_and_refusals(monkeypatch):
+    """``Linkage.evaluator``: one position as a tuple, an array as rows, the values of
+    ``solve``; a position ``solve`` refuses is refused with its error."""
+    linkage = linkcli.loads(FOURBAR)
+    names = ["beta", "gammadot", "xBddot", "AB"]
+    ev = linkage.evaluator(names)
+    assert ev.names == tuple(names) and ev.units == ("deg", "deg/s", "mm/s^2", "mm")
+    q = np.linspace(-170.0, 190.0, 37)
+    table = ev(q, 3.0, -1.0)
+    expected = linkage.solve(q, 3.0, -1.0, names=names).values
+    for row, name in zip(table, names):
+        assert np.allclose(row, expected[name], rtol=CLOSE, atol=CLOSE * np.max(np.abs(row)))
+    one = ev(q[5], 3.0, -1.0)
+    assert type(one) is tuple and len(one) == 4
+    assert np.allclose(one, table[:, 5], rtol=CLOSE, atol=0)
+    text = FOURBAR.replace("length: 280", "length: 60")
+    for q in (200.0, np.linspace(0, 350, 36)):
+        with pytest.raises(AssemblyError) as fast:
+            linkcli.loads(text).evaluator()(q)
+        with pytest.raises(AssemblyError) as general:
+            linkcli.loads(text).solve(q)
+        assert str(fast.value) == str(general.value)
+
+
+def test_the_evaluator_of_names_it_does_not_write_is_solves():
+    """A speed is not written straight: the evaluator's call is then ``solve``'s."""
+    linkage = linkcli.loads(FOURBAR.replace("AB: {length: [A0, B]}}",
+                                            "AB: {length: [A0, B]}, vB: {speed: B}}"))
+    ev = linkage.evaluator(["beta", "vB"])
+    assert ev._straight is None
+    assert ev(30.0) == tuple(float(v) for v in linkage.solve(30.0, names=["beta", "vB"])
+                             .values.values())

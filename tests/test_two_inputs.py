@@ -240,3 +240,115 @@ def test_a_ties_rates_are_its_derivatives_along_the_motion():
     assert a2 == pytest.approx((plus[1][1] - minus[1][1]) / (2 * h), rel=1e-6)
     expected = np.radians(60 + 0.01 * (85 - 90) ** 2 + 5 * np.sin(np.radians(85)))
     assert q2 == pytest.approx(expected, rel=1e-12)
+
+
+# --- statics and inverse dynamics: one unknown load per driver ----------------------------
+def _loads(text, name="arm.yaml"):
+    """The model and the drivers' torques M1, M2 (SI) of the arm's file ``text``."""
+    linkage = linkcli.loads(text, name=name)
+    result = linkage.solve(names=["M1", "M2"])
+    return linkage.model, [result.values["M1"], result.values["M2"]]
+
+
+def _arm_text():
+    with open(os.path.join(DATA, "arm-2r-loads.yaml"), encoding="utf-8") as handle:
+        return handle.read()
+
+
+def test_arm_statics_is_the_jacobians_transpose():
+    """M_j = -F . J_j, J_j = i L e^{i theta_j} (B's velocity per unit rate of driver j)."""
+    mech, (m1, m2) = _loads(_arm_text())
+    t1, t2 = (c.value for c in mech.coordinates)
+    force = 10 - 20j
+    j1, j2 = 0.4j * np.exp(1j * t1), 0.4j * np.exp(1j * t2)
+    assert [m1, m2] == pytest.approx([-(np.conj(force) * j1).real, -(np.conj(force) * j2).real],
+                                     rel=1e-12)
+
+
+def test_arm_inverse_dynamics_balances_the_power_of_any_motion():
+    """With a point mass at B under gravity, the drivers' torques balance the d'Alembert
+    forces: for the file's motion M1 w1 + M2 w2 = m (a_B - g) . v_B (an energy check on
+    the actual velocities, both drivers moving)."""
+    text = _arm_text().replace("report:", "dynamics:\n  gravity: 9.81\n  masses: {B: 3}\n"
+                               "report:")
+    text = text.replace("rate: 1.5}", "rate: 1.5, accel: 2}")
+    mech, (m1, m2) = _loads(text)
+    solver, kin = solved(mech)
+    v, a = kin.vel["B"], kin.acc["B"]
+    inertia = 3 * (a - (-9.81j))
+    power = (np.conj(inertia) * v).real - (np.conj(10 - 20j) * v).real
+    w1, w2 = (c.rate for c in mech.coordinates)
+    assert m1 * w1 + m2 * w2 == pytest.approx(power, rel=1e-12)
+    j2 = unit_rates(solver, kin, 1).vel["B"]            # and each driver's own balance
+    assert m2 == pytest.approx((np.conj(inertia) * j2).real - (np.conj(10 - 20j) * j2).real,
+                               rel=1e-12)
+
+
+@pytest.mark.parametrize("old, new, words", [
+    ("M2: {type: driver, on: theta2, value: unknown}", "M2: {type: driver, on: theta2, value: 1}",
+     "one load per driver must be unknown (2: theta1, theta2), found 1 (M1)"),
+    ("M2: {type: driver, on: theta2, value: unknown}", "M2: {type: driver, value: unknown}",
+     "key 'loads.M2': missing key 'on'"),
+    ("M2: {type: driver, on: theta2, value: unknown}", "M2: {type: driver, on: phi, value: unknown}",
+     "key 'loads.M2.on': undefined driver 'phi'"),
+])
+def test_loads_of_several_drivers_refused_at_their_line(tmp_path, old, new, words):
+    path = tmp_path / "arm.yaml"
+    text = _arm_text()
+    assert old in text
+    path.write_text(text.replace(old, new), encoding="utf-8")
+    code, _, err = run(["solve", str(path)])
+    assert code == 2 and words in err
+
+
+def test_joint_forces_of_several_drivers_are_refused_by_name():
+    code, _, err = run(["solve", os.path.join(DATA, "arm-2r-loads.yaml"), "--reactions"])
+    assert code == 2 and "joint forces of a mechanism of several drivers are not solved" in err
+
+
+def test_unknown_loads_that_do_the_same_work_are_refused():
+    """Two unknown forces at B along x: the drivers' motions cannot tell them apart."""
+    text = _arm_text().replace("M1: {type: driver, on: theta1, value: unknown}",
+                               "M1: {type: force, at: B, x: unknown}") \
+        .replace("M2: {type: driver, on: theta2, value: unknown}",
+                 "M2: {type: force, at: B, x: unknown}")
+    with pytest.raises(linkcli.LinkcliError) as caught:
+        linkcli.loads(text, name="same.yaml").solve(names=["M1"])
+    assert "cannot be found together" in str(caught.value)
+
+
+# --- the invariance and round-trip layers bite on files of several drivers -----------------
+def test_units_invariance_catches_a_second_drivers_rate_read_without_its_unit(monkeypatch):
+    """Planted: the rates of every driver but the first taken as SI numbers, whatever the
+    file's units: the collar's file rewritten in inches disagrees with itself."""
+    from linkcli.input.loads import LoadsSection
+    from test_invariance_units import SYSTEMS, caught, check
+    read = LoadsSection.driver_rate
+
+    def raw(self, spec, path, key, base, order, units):
+        if path[0] == "drivers" and path[1] != next(iter(self.doc.data["drivers"])):
+            return float(self.number(spec.get(key, 0), path + (key,)))
+        return read(self, spec, path, key, base, order, units)
+
+    path = "mechanisms/hibbeler-gupta-16-19-collar-on-rotating-rod.yaml"
+    found = caught(lambda: check(path, SYSTEMS["us"]),
+                   lambda: monkeypatch.setattr(LoadsSection, "driver_rate", raw))
+    assert any("cxdot" in line for line in found), found
+
+
+def test_sweep_round_trip_catches_the_other_drivers_standing_still(monkeypatch):
+    """Planted: a sweep's rows solved with the drivers it does not sweep at rest (their
+    rates 0): the pinion's row at the file's value is no longer solve's."""
+    from linkcli.runs.sweep.blocks import Sweeper
+    from test_roundtrip_exports import sweep_mismatches
+    name = "mechanisms/hibbeler-16-65-pinion-between-racks.yaml"
+    assert not sweep_mismatches(name)
+
+    def still(self, q_si):
+        qs, rates, accels = self.drive(q_si, self.qd, self.qdd, held=False)
+        kin = self.solver.positions(qs)
+        kin.rates, kin.accels = rates, accels
+        return kin
+
+    monkeypatch.setattr(Sweeper, "_positions", still)
+    assert any("xAdot" in line for line in sweep_mismatches(name))

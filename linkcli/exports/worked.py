@@ -146,14 +146,14 @@ def _kinematics(mech, w, say=str) -> list:
     """Closure, velocity and acceleration systems of each group, and the statics, each line
     written by ``say`` (``_language``)."""
     solver = solver_for(mech)
-    d = mech.driver
+    value, rate, accel = mech.inputs
     unit, f = mech.units.display("length", 0)
-    kin = solver.positions(d.value)
+    kin = solver.positions(value)
     solver.check(kin, velocities=False)
-    solver.velocities(kin, d.rate)
+    solver.velocities(kin, rate)
     solver.check(kin, velocities=True)
     vel_systems = _systems(solver, kin, 1)
-    solver.accelerations(kin, d.accel, keep=True)
+    solver.accelerations(kin, accel, keep=True)
     acc_systems = _systems(solver, kin, 2)
     kin.linear.clear()
     lines = []
@@ -220,17 +220,27 @@ def _shown(point: str) -> str:
 
 
 def _statics(mech, solver, kin, w, say=str):
-    from linkcli.forces.statics import coefficient
-    unit_kin = unit_rates(solver, kin)
+    """The loads' virtual power coefficients c_i (per unit driver rate): with several
+    drivers a column c_ij per driver j, its unit rate with the others at rest."""
+    from linkcli.forces.inputs import load_coefficient
+    drivers = mech.coordinates if mech.elements is None else mech.coordinates[:1]
+    units = [unit_rates(solver, kin, j) for j in range(len(drivers))]
     rows = []
     for load in mech.loads.values():
-        c = float(np.ravel(coefficient(mech, load, kin.pos, unit_kin.vel))[0])
+        cs = [float(np.ravel(load_coefficient(mech, load, kin.pos, u.vel, j))[0])
+              if len(drivers) > 1 else
+              float(np.ravel(load_coefficient(mech, load, kin.pos, u.vel, None))[0])
+              for j, u in enumerate(units)]
         kind = mech.load_unit_kind(load)
         value = "?" if load.value is None else f"{load.value / mech.units.factor(kind):.6g}"
-        rows.append([load.name, say(value), say(f"{c:.6g}")])
-    return [Block("heading", w["statics"]),
-            Block("text", "sum_i L_i c_i = 0"),
-            Block("table", rows, [w["load"], w["value"], w["coefficient"]])]
+        rows.append([load.name, say(value)] + [say(f"{c:.6g}") for c in cs])
+    if len(drivers) == 1:
+        return [Block("heading", w["statics"]), Block("text", "sum_i L_i c_i = 0"),
+                Block("table", rows, [w["load"], w["value"], w["coefficient"]])]
+    return [Block("heading", w["statics"]), Block("text", "sum_i L_i c_ij = 0, j = " +
+                                                  ", ".join(d.name for d in drivers)),
+            Block("table", rows, [w["load"], w["value"]] +
+                  [f"{w['coefficient']}: {d.name}" for d in drivers])]
 
 
 def with_formulas(items, formulas, lang="en") -> list:

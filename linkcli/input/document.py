@@ -100,7 +100,8 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
             self.error(("coordinates",), "the motion under given loads is of a mechanism with "
                        "one driver", hint="replace 'coordinates:' by 'driver:'")
         loads = self.block(self.loads, data, units, pool, bodies, actuators, driver,
-                           "coordinates" not in data and not machine) or {}
+                           "coordinates" not in data and not machine,
+                           coordinates if "drivers" in data else ()) or {}
         motion = self.block(self.motion_section, data, units)
         self.vibration = {"coordinates": {c.name for c in coordinates}
                           if "coordinates" in data else set(),

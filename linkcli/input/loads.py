@@ -113,16 +113,19 @@ class LoadsSection:
             measured = self.number(spec["value"], path + ("value",), base, units)
         return Driver(kind, a, b, measured, 0.0, 0.0, name)
 
-    def loads(self, data, units, pool, bodies, actuators, driver, unknown_needed=True) -> dict:
+    def loads(self, data, units, pool, bodies, actuators, driver, unknown_needed=True,
+              drivers=()) -> dict:
+        """``loads``: one unknown (one per driver with several drivers, ``drivers``)."""
         spec = self.mapping(self.get(data, (), "loads", required=False, default={}) or {},
                             ("loads",))
         loads = {}
         for name, value in spec.items():
             load = self.block(self.load, name, value, units, pool, bodies, actuators, driver,
-                              data)
+                              data, drivers)
             if load is not None:
                 loads[name] = load
         unknown = [n for n, load in loads.items() if load.value is None]
+        wanted = max(1, len(drivers))
         if not unknown_needed:
             for n in unknown:
                 if getattr(self, "machine", False):
@@ -132,13 +135,17 @@ class LoadsSection:
                 else:
                     self.error(("loads", n), "a vibration problem has no unknown load: every "
                                "load is known and acts in the equilibrium", hint="give its value")
-        elif loads and len(unknown) != 1 and len(loads) == len(spec):
+        elif loads and len(unknown) != wanted and len(loads) == len(spec):
             which = ", ".join(unknown) if unknown else "none"
-            self.error(("loads",), f"exactly one load must be unknown, found {len(unknown)} ({which})",
+            exactly = "exactly one load must be unknown" if wanted == 1 else \
+                f"one load per driver must be unknown ({wanted}: " + \
+                ", ".join(d.name for d in drivers) + ")"
+            self.error(("loads",), f"{exactly}, found {len(unknown)} ({which})",
                        hint="write 'unknown' as the value the statics must find")
         return loads
 
-    def load(self, name, value, units, pool, bodies, actuators, driver, data=None) -> Load:
+    def load(self, name, value, units, pool, bodies, actuators, driver, data=None,
+             drivers=()) -> Load:
         path = ("loads", name)
         self.name(name, path, what="load")
         value = self.mapping(value, path, {"type", "at", "on", "x", "y", "magnitude", "angle",
@@ -187,6 +194,11 @@ class LoadsSection:
             target = self.name(self.get(value, path, "on"), path + ("on",), pool_b, "link")
         elif kind == "axial":
             target = self.name(self.get(value, path, "on"), path + ("on",), actuators, "actuator")
+        elif drivers:                     # several drivers: the one it acts on
+            names = {d.name: d for d in drivers}
+            target = self.name(self.get(value, path, "on"), path + ("on",), set(names),
+                               "driver")
+            driver = names[target]
         elif "on" in value:
             raise self.error(path + ("on",), "the driver load acts on the driver coordinate")
         driver_unit = "torque" if driver is None or driver.kind == "angle" else "force"

@@ -73,13 +73,11 @@ def state(mech, q=None, method="closed", tol=None):
     virtual-power coefficients; with several drivers, ``q`` is the first's and ``unit`` its
     unit rate, the others at rest)."""
     solver = solver_for(mech, method, tol)
-    d = mech.driver
-    q = d.value if q is None else q
-    rate, accel = d.rate, d.accel
-    if len(mech.coordinates) > 1:   # several drivers: q the first's, the others the file's
+    own, rate, accel = mech.inputs
+    if q is None:
+        q = own
+    elif len(mech.coordinates) > 1:   # several drivers: q the first's, the others the file's
         q = (q,) + tuple(c.value + 0 * np.asarray(q, float) for c in mech.coordinates[1:])
-        rate = tuple(c.rate for c in mech.coordinates)
-        accel = tuple(c.accel for c in mech.coordinates)
     kin = solver.positions(q)
     solver.check(kin, velocities=False)
     solver.velocities(kin, rate)

@@ -143,6 +143,7 @@ class _Writer:
         self.constants: list = []       # the value of each c<i> of the source
         self.named: dict = {}           # repr of a constant -> its name
         self.bounds: dict = {}          # variable -> a bound of its magnitude, where known
+        self.radii: dict = {}           # (x, y) -> r > 0 with x^2 + y^2 = r^2 up to rounding
 
     def emit(self, line: str):
         self.lines.append("    " + line)
@@ -191,6 +192,12 @@ class _Writer:
         """Record |x| <= the sum of ``terms`` (bounds; None where one is not known)."""
         if isinstance(x, str) and None not in terms:
             self.bounds[x] = float(sum(terms))
+
+    def radius(self, x, y, r) -> None:
+        """Record that (x, y) is a vector of the fixed length ``r`` (a link; not one of
+        driven length, a string ``q``)."""
+        if isinstance(r, float) and r != 0 and isinstance(x, str) and isinstance(y, str):
+            self.radii[(x, y)] = abs(r)
 
     def add(self, a, b):
         if isinstance(a, float) and isinstance(b, float):
@@ -282,9 +289,8 @@ def _build(program, probes, order, array):
     values = [_probe(out, probe, state) for probe in probes]
     if array:
         out.emit(f"table = empty(({len(values)},) + q.shape)")
-        for k, v in enumerate(values):
-            out.emit(f"table[{k}] = {out.text(v)}")
-        out.emit("table += 0.0")            # -0.0 is 0.0, as the general path writes
+        for k, v in enumerate(values):      # -0.0 is 0.0, as the general path writes
+            out.emit(f"add({out.text(v)}, 0.0, out=table[{k}])")
         out.emit("if not isfinite(table.sum()): return None")
         out.emit("return table")
     else:
@@ -369,6 +375,7 @@ def _crank(out, op, par, state, order):
     for i, d in enumerate((rx, ry)):
         out.offset(pos[p][i], pos[a][i], d)
         out.bounded(pos[p][i], out.bound(pos[a][i]), abs(length))
+    out.radius(rx, ry, length)
     if order >= 1:
         vel[p] = [out.add(vel[a][0], out.mul(ry, out.neg("w"))),
                   out.add(vel[a][1], out.mul(rx, "w"))]
@@ -423,6 +430,8 @@ def _circles(out, op, par, state, order):
     for i in (0, 1):
         out.offset(pos[p][i], pos[a][i], offset[i])
         out.bounded(pos[p][i], out.bound(pos[a][i]), None if d1 else abs(r1))
+    out.radius(*offset, r1)
+    out.radius(out.sub(pos[p][0], bx), out.sub(pos[p][1], by), r2)
     if order < 1:
         return
     g1 = [out.sub(pos[p][i], pos[a][i]) for i in (0, 1)]    # half the gradients, G / 2
@@ -453,6 +462,7 @@ def _circle_guide(out, op, par, state, order):
               out.add(by, out.add(out.mul(along, uy), e * ux))]
     for i in (0, 1):
         out.bounded(pos[p][i], out.bound(pos[a][i]), None if driven else abs(r))
+    out.radius(out.sub(pos[p][0], ax), out.sub(pos[p][1], ay), r)
     if order < 1:
         return
     circle = ([out.sub(pos[p][i], pos[a][i]) for i in (0, 1)], a, driven)     # G / 2
@@ -573,16 +583,23 @@ def _angle(out, z, signed):
 
 def _vector_rate(out, kind, rate, z, dz, ddz):
     """Rates of the angle (Im w, Im(z''/z) - 2 Re w Im w) or of the length (|z| Re w,
-    |z| (Re(z''/z - w^2) + (Re w)^2)) of z, with w = z'/z; refused where z = 0."""
+    |z| (Re(z''/z - w^2) + (Re w)^2)) of z, with w = z'/z; refused where z = 0.  For a
+    link's fixed length r (``_Writer.radius``), |z|^2 = r^2."""
     zx, zy = z
-    n2 = out.add(out.mul(zx, zx), out.mul(zy, zy))
-    out.require(out.low(n2), 0.0)
+    radius = out.radii.get((zx, zy))
+    if radius is not None:      # a link of fixed length: |z|^2 is its square
+        n2 = radius * radius
+    else:
+        n2 = out.add(out.mul(zx, zx), out.mul(zy, zy))
+        out.require(out.low(n2), 0.0)
     wr = out.div(out.add(out.mul(zx, dz[0]), out.mul(zy, dz[1])), n2)
     wi = out.div(out.sub(out.mul(zx, dz[1]), out.mul(zy, dz[0])), n2)
     if kind == ANGLE:
         if rate == 1:
             return wi
         si = out.div(out.sub(out.mul(zx, ddz[1]), out.mul(zy, ddz[0])), n2)
+        if radius is not None:  # Re w = z.z' / |z|^2 = 0 where |z| is fixed: its rounding
+            return si           # only, which the general path carries and this leaves out
         return out.sub(si, out.mul(2.0, out.mul(wr, wi)))
     length = out.call("hypot", zx, zy)
     if rate == 1:

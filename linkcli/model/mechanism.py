@@ -149,14 +149,16 @@ class Driver:
 
 @dataclass(frozen=True)
 class Load:
-    """An external load.  ``value`` is None for the one unknown load.
+    """An external load.  ``value`` is None for the one unknown load (one per driver with
+    several drivers).
 
     kind 'force': at point ``target`` along unit direction ``direction``
     (complex), magnitude ``value`` (N); 'torque': on body ``target`` (N m,
     counter-clockwise); 'axial': on actuator ``target`` (N, > 0 pushes the
-    ends apart); 'driver': generalised force on q (N or N m); 'motor': a torque on body
-    ``target`` given by its characteristic ``motor`` of the body's speed; 'brake': a torque
-    ``value`` >= 0 on body ``target`` against its turning.  A pressure load is
+    ends apart); 'driver': generalised force on q (N or N m), with several drivers on
+    the driver named ``target``; 'motor': a torque on body ``target`` given by its
+    characteristic ``motor`` of the body's speed; 'brake': a torque ``value`` >= 0 on body
+    ``target`` against its turning.  A pressure load is
     the force or axial load p A, with ``pressure`` = (p in Pa, A in m^2, the bore D
     in m or None) as the problem states them.
     """
@@ -389,6 +391,15 @@ class Mechanism:
         figure = {**self.fixed, **self.moving}
         return [figure[p] for p in self.points]
 
+    @property
+    def inputs(self) -> tuple:
+        """(values, rates, accelerations) of the file's own position as the solvers take
+        them: numbers for one driver (or coordinate), tuples over them for several."""
+        cs = self.coordinates
+        if len(cs) == 1:
+            return cs[0].value, cs[0].rate, cs[0].accel
+        return tuple(tuple(getattr(c, a) for c in cs) for a in ("value", "rate", "accel"))
+
     def unknown_load(self) -> Load:
         load = next((load for load in self.loads.values() if load.value is None), None)
         if load is None:
@@ -397,10 +408,17 @@ class Mechanism:
                              hint="give one load, usually the driver's, the value 'unknown'")
         return load
 
+    def unknown_loads(self) -> list:
+        """The unknown loads, one per driver of a mechanism of several drivers."""
+        return [load for load in self.loads.values() if load.value is None]
+
     def load_unit_kind(self, load: Load) -> str:
-        """'torque' for a torque or the driver load of an angle driver, else 'force'."""
-        if load.kind in ("torque", "motor", "brake") or \
-                load.kind == "driver" and self.driver.kind == "angle":
+        """'torque' for a torque (a motor's, a brake's) or the driver load of an angle driver
+        (the driver it acts on, ``target``, with several drivers), else 'force'."""
+        driver = next((c for c in self.coordinates if c.name == load.target), self.driver) \
+            if load.kind == "driver" else None
+        if load.kind in ("torque", "motor", "brake") or driver is not None and \
+                driver.kind == "angle":
             return "torque"
         return "force"
 

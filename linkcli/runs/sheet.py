@@ -26,7 +26,7 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
     refuse_driving(mech, q, qdot, qddot, method)
     if design.unsolved(mech):       # each trial by the method asked
         mech = design.resolved(mech, evaluate, method, tol)
-    names, solve, exprs, solved, limits = _route(mech, names)
+    names, solve, exprs, solved, limits = route(mech, names)
     result = _evaluate(mech, q, qdot, qddot, solve, method, tol, limits)
     for name in solved:         # a solved parameter: the value the file was built with
         value, result.units[name] = design.answer(mech, name)
@@ -42,7 +42,7 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
 _ROUTES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
-def _route(mech, names) -> tuple:
+def route(mech, names) -> tuple:
     """(names, the names to solve, the expressions, the solved design parameters, whether a
     limit of the motion is asked) of ``names`` (default: the report's) on ``mech``, worked
     out at the first call and kept with the mechanism, like its plans."""

@@ -227,12 +227,12 @@ class Plan:
             result = self._compiled(mech, solver, order, *driver)
             if result is not None:
                 return result
+        if q is not None and np.size(q) >= LONG:
+            keep_freed_memory()
         if straight is not None and q is not None:
             result = self._straight_array(mech, solver, straight, *driver)
             if result is not None:
                 return result
-        if q is not None and np.size(q) >= LONG:
-            keep_freed_memory()
         if single and q is not None and np.size(q) > BLOCK and self._blockwise:
             result = self._in_blocks(mech, solver, order, *driver)
             if result is not None:
@@ -264,9 +264,9 @@ class Plan:
         driver = mech.driver
         f0, f1, f2 = self.q_factors
         try:
-            w = driver.rate if qdot is None else _number(qdot, f1)
-            al = driver.accel if qddot is None else _number(qddot, f2)
-            qs = driver.value if q is None else _number(q, f0)
+            w = driver.rate if qdot is None else as_number(qdot, f1)
+            al = driver.accel if qddot is None else as_number(qddot, f2)
+            qs = driver.value if q is None else as_number(q, f0)
             if qs is None or w is None or al is None:
                 return None
             values = straight.scalar(qs, w, al)
@@ -454,7 +454,7 @@ def solved(solver, order, q, qd, qdd):
     return kin
 
 
-def _number(x, factor):
+def as_number(x, factor):
     """``x`` times ``factor`` where ``x`` is one number (a float, an int, a 0-d array), else
     None."""
     if type(x) is float or type(x) is int:

@@ -26,9 +26,11 @@ from linkcli.runs.sheet import evaluate
 from linkcli.texts.data import data_lines
 from linkcli.exports.text import fence, markdown, refuse_unfit, visible
 from linkcli.input.document import build
+from linkcli.kinematics.closed_form import unit_rates
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import REPORT_SECTIONS
 from linkcli.model.rounding import noise_free
+from linkcli.texts.italian import italian
 
 WORDS = {
     "en": {"data": "Data", "structure": "Mobility and Assur decomposition",
@@ -106,6 +108,7 @@ def blocks(mech, lang="en", figure=True, method="closed") -> list:
     together (as ``explain --method newton``).  The results are those ``solve`` prints:
     a value that is the rounding noise of a zero is 0."""
     w = WORDS[lang]
+    say = _language(lang)
     result = without_noise(evaluate(mech, method=method))
     solution = design.solve(mech, evaluate, method) if design.unsolved(mech) else None
     solved = solution.mech if solution is not None else mech
@@ -114,15 +117,15 @@ def blocks(mech, lang="en", figure=True, method="closed") -> list:
         out += [Block("text", p.strip()) for p in mech.statement.split("\n\n") if p.strip()]
     out += [Block("heading", w["data"]), Block("lines", data_lines(mech, lang, solution))]
     out += [Block("heading", w["structure"]),
-            Block("lines", explain(mech, method).splitlines()[2:])]
-    if mech.elements is None and method == "closed":
-        out += _kinematics(solved, w)
+            Block("lines", [say(x) for x in explain(mech, method).splitlines()[2:]])]
+    if mech.elements is None and method == "closed" and len(mech.coordinates) == 1:
+        out += _kinematics(solved, w, say)
     out.append(Block("heading", w["results"]))
     decimals = mech.report.get("decimals", 1)
     for section in REPORT_SECTIONS:
         names = design.asked(mech, mech.report.get(section) or [])
         if names:
-            rows = [[n, fmt(np.ravel(result.values[n])[0], decimals), result.units[n]]
+            rows = [[n, say(fmt(np.ravel(result.values[n])[0], decimals)), result.units[n]]
                     for n in names]
             title = heading(mech, section, lang)
             out.append(Block("table", rows, [title, w["value"], w["unit"]]))
@@ -133,17 +136,24 @@ def blocks(mech, lang="en", figure=True, method="closed") -> list:
     return out
 
 
-def _kinematics(mech, w) -> list:
-    """Closure, velocity and acceleration systems of each group, and the statics."""
+def _language(lang):
+    """The function that writes a solving line (English, as the solvers make it) in
+    ``lang``: Italian words and decimal comma for 'it' (``texts.italian``)."""
+    return italian if lang == "it" else str
+
+
+def _kinematics(mech, w, say=str) -> list:
+    """Closure, velocity and acceleration systems of each group, and the statics, each line
+    written by ``say`` (``_language``)."""
     solver = solver_for(mech)
-    d = mech.driver
+    value, rate, accel = mech.inputs
     unit, f = mech.units.display("length", 0)
-    kin = solver.positions(d.value)
+    kin = solver.positions(value)
     solver.check(kin, velocities=False)
-    solver.velocities(kin, d.rate)
+    solver.velocities(kin, rate)
     solver.check(kin, velocities=True)
     vel_systems = _systems(solver, kin, 1)
-    solver.accelerations(kin, d.accel, keep=True)
+    solver.accelerations(kin, accel, keep=True)
     acc_systems = _systems(solver, kin, 2)
     kin.linear.clear()
     lines = []
@@ -158,7 +168,7 @@ def _kinematics(mech, w) -> list:
             text = _constraint_text(c, mech, f, unit)
             if text:
                 lines.append(f"    {text}")
-    out = [Block("heading", w["positions"]), Block("lines", lines)]
+    out = [Block("heading", w["positions"]), Block("lines", [say(x) for x in lines])]
     for key, systems, suffix in (("velocities", vel_systems, "/s"),
                                  ("accelerations", acc_systems, "/s^2")):
         rows = []
@@ -171,9 +181,10 @@ def _kinematics(mech, w) -> list:
                         f"  ->  {point}{chr(39) * (1 if suffix == '/s' else 2)} = "
                         f"{_xy(value, f, top)} {unit}{suffix}")
         if rows:
-            out += [Block("heading", w[key]), Block("lines", [w["system"]] + rows)]
+            out += [Block("heading", w[key]), Block("lines", [w["system"]] +
+                                                    [say(x) for x in rows])]
     if mech.loads and mech.dynamics is None and any(ld.value is None for ld in mech.loads.values()):
-        out += _statics(mech, solver, kin, w)
+        out += _statics(mech, solver, kin, w, say)
     return out
 
 
@@ -190,7 +201,7 @@ def _constraint_text(c, mech, f, unit):
     from linkcli.kinematics.groups import Dist, Line
     if isinstance(c, Dist):
         length = "q" if c.length is None else f"{c.length / f:.6g} {unit}"
-        return f"|{c.p} - {c.a}| = {length}"
+        return f"|{_shown(c.p)} - {_shown(c.a)}| = {length}"
     if isinstance(c, Line):
         body = mech.bodies.get(c.body)
         if body is not None and body.guide is not None and c.b.startswith("~"):
@@ -208,18 +219,28 @@ def _shown(point: str) -> str:
     return point
 
 
-def _statics(mech, solver, kin, w):
-    from linkcli.forces.statics import coefficient
-    unit_kin = solver.velocities(kin.at_rest(), np.ones_like(kin.q))
+def _statics(mech, solver, kin, w, say=str):
+    """The loads' virtual power coefficients c_i (per unit driver rate): with several
+    drivers a column c_ij per driver j, its unit rate with the others at rest."""
+    from linkcli.forces.inputs import load_coefficient
+    drivers = mech.coordinates if mech.elements is None else mech.coordinates[:1]
+    units = [unit_rates(solver, kin, j) for j in range(len(drivers))]
     rows = []
     for load in mech.loads.values():
-        c = float(np.ravel(coefficient(mech, load, kin.pos, unit_kin.vel))[0])
+        cs = [float(np.ravel(load_coefficient(mech, load, kin.pos, u.vel, j))[0])
+              if len(drivers) > 1 else
+              float(np.ravel(load_coefficient(mech, load, kin.pos, u.vel, None))[0])
+              for j, u in enumerate(units)]
         kind = mech.load_unit_kind(load)
         value = "?" if load.value is None else f"{load.value / mech.units.factor(kind):.6g}"
-        rows.append([load.name, value, f"{c:.6g}"])
-    return [Block("heading", w["statics"]),
-            Block("text", "sum_i L_i c_i = 0"),
-            Block("table", rows, [w["load"], w["value"], w["coefficient"]])]
+        rows.append([load.name, say(value)] + [say(f"{c:.6g}") for c in cs])
+    if len(drivers) == 1:
+        return [Block("heading", w["statics"]), Block("text", "sum_i L_i c_i = 0"),
+                Block("table", rows, [w["load"], w["value"], w["coefficient"]])]
+    return [Block("heading", w["statics"]), Block("text", "sum_i L_i c_ij = 0, j = " +
+                                                  ", ".join(d.name for d in drivers)),
+            Block("table", rows, [w["load"], w["value"]] +
+                  [f"{w['coefficient']}: {d.name}" for d in drivers])]
 
 
 def with_formulas(items, formulas, lang="en") -> list:
@@ -257,37 +278,83 @@ def formula_latex(entry, rank) -> str:
 
 
 def formula_mathml(entry, rank) -> str:
-    """An Entry as a display <math> element, its LaTeX kept as the annotation."""
+    """An Entry as MathML: a matrix equation or system as one display <math> element; a
+    scalar one as a run of inline <math> pieces, one per term of its sums, that the page
+    breaks between terms (``_pieces``).  The first element keeps the whole formula's
+    LaTeX as its annotation."""
     import sympy as sp
     from linkcli.texts import notation
-    if entry.reads == "equation":
-        left, right = (notation.mathml_body(x, rank) for x in entry.value)
-        return _math(f"{left}<mo>=</mo>{right}", formula_latex(entry, rank))
+    tex = formula_latex(entry, rank)
     if entry.reads == "system":
         A, u, b = (notation.mathml_matrix(x, rank) for x in entry.value)
         label = f"<mtext>{html.escape(entry.label)}</mtext><mspace width=\"1em\"/>"
-        return _math(f"{label}{A}{u}<mo>=</mo>{b}", formula_latex(entry, rank))
-    value = notation.mathml_matrix(entry.value, rank) if isinstance(entry.value, sp.MatrixBase) \
-        else notation.mathml_body(entry.value, rank, entry.terms)
+        return _pieces([f"{label}{A}{u}", f"<mo>=</mo>{b}"], tex)
+    if isinstance(entry.value, sp.MatrixBase):
+        label = notation.label_mathml(entry.label) if entry.label else ""
+        return _math(f"{label}<mo>=</mo>{notation.mathml_matrix(entry.value, rank)}", tex)
+    if entry.reads == "equation":
+        left, right = (notation.mathml_terms(x, rank) for x in entry.value)
+        return _pieces(left[:-1] + [left[-1] + "<mo>=</mo>" + right[0]] + right[1:], tex)
+    value = notation.mathml_terms(entry.value, rank, entry.terms)
     label = notation.label_mathml(entry.label) if entry.label else ""
-    body = {"is": f"{label}<mo>=</mo>{value}",
-            "zero": f"{label}<mspace width=\"1em\"/>{value}<mo>=</mo><mn>0</mn>" if label
-            else f"{value}<mo>=</mo><mn>0</mn>",
-            "positive": f"{value}<mo>&gt;</mo><mn>0</mn>"}[entry.reads]
-    return _math(body, formula_latex(entry, rank))
+    if entry.reads == "is":
+        return _pieces([f"{label}<mo>=</mo>{value[0]}"] + value[1:], tex)
+    end = "<mo>&gt;</mo><mn>0</mn>" if entry.reads == "positive" else "<mo>=</mo><mn>0</mn>"
+    head = [label + '<mspace width="1em"/>'] if label and entry.reads == "zero" else []
+    return _pieces(head + value[:-1] + [value[-1] + end], tex)
 
 
-def _math(body, tex) -> str:
-    """A display <math> element of ``body``, its LaTeX ``tex`` as the annotation."""
-    return ('<math xmlns="http://www.w3.org/1998/Math/MathML" display="block"><semantics>'
+def _pieces(pieces, tex) -> str:
+    """Inline <math> elements, one per piece, in a 'terms' paragraph: the browser breaks
+    the line between two pieces where the column ends (continuation lines indented), so
+    that a long equation and its '= 0' stay in the column; the first piece carries the
+    LaTeX ``tex`` of the whole."""
+    first = _math(pieces[0], tex, display=False)
+    rest = [f'<math xmlns="http://www.w3.org/1998/Math/MathML"><mrow>{p}</mrow></math>'
+            for p in pieces[1:]]
+    return '<span class="terms">' + " ".join([first] + rest) + "</span>"
+
+
+def _math(body, tex, display=True) -> str:
+    """A <math> element of ``body`` (display block, or inline), its LaTeX ``tex`` as the
+    annotation."""
+    mode = ' display="block"' if display else ""
+    return (f'<math xmlns="http://www.w3.org/1998/Math/MathML"{mode}><semantics>'
             f'<mrow>{body}</mrow><annotation encoding="application/x-tex">'
             f'{html.escape(tex)}</annotation></semantics></math>')
 
 
 # --- renderers ---------------------------------------------------------------------------
-def to_html(items, lang="en") -> str:
-    def esc(text):
-        return html.escape(visible(text))
+STYLE = ("body{font-family:sans-serif;max-width:60em;margin:2em auto;padding:0 1em}"
+         "pre{background:#f6f6f6;padding:.6em;white-space:pre-wrap;overflow-wrap:anywhere}"
+         "table{border-collapse:collapse;margin:.5em 0}"
+         "td,th{border:1px solid #bbb;padding:.2em .6em;text-align:left}"
+         ".figure svg,.figure img{max-width:100%;height:auto}"
+         ".formula{margin:.4em 0}"
+         ".terms{display:block;padding-left:2em;text-indent:-2em;line-height:2}"
+         'math{font-family:"Latin Modern Math","STIX Two Math","DejaVu Math TeX Gyre",math}'
+         "mtable.matrix{border:solid currentColor;border-width:0 1.5px;padding:0 .3em;"
+         "background:" + ",".join(f"linear-gradient(currentColor,currentColor) {x} {y}/.3em "
+                                  "1.5px no-repeat" for x in ("left", "right")
+                                  for y in ("top", "bottom")) + "}")
+
+
+def esc(text) -> str:
+    """The file's or our text as HTML text: unfit characters shown as U+FFFD, escaped."""
+    return html.escape(visible(text))
+
+
+def svg_image(svg: str, alt: str) -> str:
+    """An SVG document as an <img> of a data URI: a page that holds several figures keeps
+    each one's ids to itself."""
+    import base64
+    data = base64.b64encode(visible(svg).encode("utf-8")).decode("ascii")
+    return f'<img src="data:image/svg+xml;base64,{data}" alt="{esc(alt)}">'
+
+
+def html_body(items, inline=True) -> str:
+    """The blocks as HTML elements: the first heading h1, the others h2; the figure as
+    inline SVG (``inline``) or as an image of its own (:func:`svg_image`)."""
     body = []
     for b in items:
         if b.kind == "heading":
@@ -304,25 +371,23 @@ def to_html(items, lang="en") -> str:
             body.append(f'<table class="results"><thead><tr>{head}</tr></thead>'
                         f"<tbody>{rows}</tbody></table>")
         elif b.kind == "figure":
-            svg = visible(b.content[b.content.find("<svg"):])
-            body.append(f'<div class="figure">{svg}</div>')
+            svg = b.content[b.content.find("<svg"):]
+            shown = visible(svg) if inline else svg_image(svg, "figure")
+            body.append(f'<div class="figure">{shown}</div>')
         elif b.kind == "formula":
             body.append(f'<div class="formula">{formula_mathml(*b.content)}</div>')
-    title = esc(str(items[0].content)) if items else "linkcli"
-    style = ("body{font-family:sans-serif;max-width:60em;margin:2em auto;padding:0 1em}"
-             "pre{background:#f6f6f6;padding:.6em;overflow-x:auto}"
-             "table{border-collapse:collapse;margin:.5em 0}"
-             "td,th{border:1px solid #bbb;padding:.2em .6em;text-align:left}"
-             ".figure svg{max-width:100%;height:auto}"
-             ".formula{overflow-x:auto;margin:.4em 0}"
-             'math{font-family:"Latin Modern Math","STIX Two Math","DejaVu Math TeX Gyre",math}'
-             "mtable.matrix{border:solid currentColor;border-width:0 1.5px;padding:0 .3em;"
-             "background:" + ",".join(f"linear-gradient(currentColor,currentColor) {x} {y}/.3em "
-                                      "1.5px no-repeat" for x in ("left", "right")
-                                      for y in ("top", "bottom")) + "}")
+    return "\n".join(body)
+
+
+def page(title, body, lang="en", style=STYLE) -> str:
+    """One self-contained HTML page."""
     return (f'<!DOCTYPE html>\n<html lang="{lang}"><head><meta charset="utf-8">'
-            f"<title>{title}</title><style>{style}</style></head><body>"
-            + "\n".join(body) + "</body></html>\n")
+            f"<title>{esc(title)}</title><style>{style}</style></head><body>"
+            + body + "</body></html>\n")
+
+
+def to_html(items, lang="en") -> str:
+    return page(str(items[0].content) if items else "linkcli", html_body(items), lang)
 
 
 def to_markdown(items) -> str:

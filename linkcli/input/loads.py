@@ -154,7 +154,7 @@ class LoadsSection:
         kind = value["type"]
         window = self.window(value, path, units, driver)
         load = self.known_load(name, value, path, kind, units, pool, bodies, actuators, driver,
-                               data)
+                               data, drivers)
         if window is not None:
             if not getattr(self, "machine", False):
                 raise self.error(path + ("over",), "'over' switches a load on over a window of "
@@ -166,7 +166,7 @@ class LoadsSection:
         return load
 
     def known_load(self, name, value, path, kind, units, pool, bodies, actuators, driver,
-                   data) -> Load:
+                   data, drivers=()) -> Load:
         """The load of type ``kind`` without its window."""
         for key in MOTOR_KEYS:
             if key in value and kind != "motor":

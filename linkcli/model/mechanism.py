@@ -87,7 +87,9 @@ class Rolling:
       ``track_radius``), which it meets on its ``other_side`` (+1 left, -1 right, looking
       along the strand): the strand's speed along u at the other disc is
       v_D . u - other_side r_D omega_D, so
-      omega = side ((v_C - v_D) . u + other_side r_D omega_D) / r.
+      omega = side ((v_C - v_D) . u + other_side r_D omega_D) / r; a belt that slips by the
+      fraction ``slip`` turns the pulley (the follower) at (1 - slip) of that:
+      omega = (1 - slip) side (...) / r.
 
     Each contact takes one degree of freedom (a higher pair in Grübler's count); a disc
     may have any number of them (a pulley with several cords).
@@ -107,6 +109,7 @@ class Rolling:
     other: str | None = None
     other_side: int = 1
     carrier: str = FRAME
+    slip: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -21,7 +21,8 @@ from linkcli.runs.sweep.names import listing
 from linkcli.runs.sheet import evaluate, refuse_driving
 from linkcli.pictures.drawing import (COLORS, draw_elements, draw_loads, draw_masses,
                                       draw_mechanism, draw_polygon, figure)
-from linkcli.pictures.drawing import place_labels, set_limits
+from linkcli.pictures.drawing import set_limits
+from linkcli.pictures.labels import place_labels
 from linkcli.errors import InputError
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import split_rate

@@ -22,8 +22,8 @@ from linkcli.answers.quantities.vibration import FREQUENCY_DIM, Answer, analyse,
 from linkcli.errors import InputError, SolveError
 from linkcli.forces import vibration as vib
 from linkcli.model.units import ANGLE_DIM
-from linkcli.pictures.drawing import (COLORS, draw_elements, draw_mechanism, figure,
-                                      place_labels, set_limits)
+from linkcli.pictures.drawing import COLORS, draw_elements, draw_mechanism, figure, set_limits
+from linkcli.pictures.labels import place_labels
 from linkcli.pictures.plotting import (IMAGE_FORMATS, _save_figure, _tell, _wrap, check_output,
                                        parse_sweep)
 from linkcli.pictures.scene import Scene, actuators, links

@@ -29,13 +29,17 @@ from linkcli.model.machine import TURN, inside
 SPLINE_TOL = 1e-10
 GRID = 256
 GRID_MOST = 16384
-#: solve_ivp's tolerances (SI: rad or m, rad/s or m/s) and method
-RTOL, ATOL = 1e-10, 1e-12
+#: solve_ivp's relative tolerance (the absolute one is 1e-2 of it, in rad and rad/s or m and
+#: m/s) and method
+RTOL = 1e-11
 METHOD = "DOP853"
 STAGES = 12             # its evaluations of the equation per step
 #: J* beyond LIMIT times its value at the start: the motion is at a dead centre of the driver
 #: (a singular position, where the members the driver moves turn without bound)
 LIMIT = 1e8
+#: how far ahead (a fraction of a turn, or of a metre) a window is looked at from a stretch's
+#: start: the start of a stretch that begins on an edge is not inside or outside by rounding
+EDGE = 1e-9
 #: the first stretch of time integrated when an event is pending (s), doubled after
 FIRST = 0.5
 
@@ -131,6 +135,9 @@ class Equation:
     def __post_init__(self):
         m = self.machine
         self.windowed = [(3 + i, load.value, load.window) for i, load in enumerate(m.windowed)]
+        #: whether each windowed load acts: decided at the start of a stretch and held over
+        #: it (a stretch ends at the next edge), so that every step sees a smooth equation
+        self.acting = None
         k = 3 + len(m.windowed)
         self.turning = [(k + i, load) for i, load in enumerate(m.turning)]
         self.limit = math.inf
@@ -142,8 +149,9 @@ class Equation:
         except LinkcliError as exc:
             raise _Blocked(t, q, exc) from None
         Q = float(v[2])
-        for i, value, window in self.windowed:
-            if inside(q, window, self.machine.angular):
+        acting = self.acting if self.acting is not None else self.modes(q, 0.0)
+        for (i, value, _), on in zip(self.windowed, acting):
+            if on:
                 Q += value * v[i]
         hold = 0.0
         for i, load in self.turning:
@@ -153,6 +161,12 @@ class Equation:
             else:
                 hold += load.value * abs(c)
         return float(v[0]), float(v[1]), Q, hold
+
+    def modes(self, q, w) -> list:
+        """Which windowed loads act just after the driver value q, moving at w: inside the
+        window a step EDGE of a turn ahead in the sense of the motion."""
+        ahead = q + math.copysign(EDGE * TURN, w) if w else q
+        return [inside(ahead, window, self.machine.angular) for _, _, window in self.windowed]
 
     def accel(self, t, q, w) -> float:
         J, dJ, Q, hold = self.parts(t, q, w)
@@ -188,14 +202,19 @@ class Motion:
         if self.rest is not None and t >= self.rest[0]:
             return self.rest[1], 0.0, 0.0
         q, w = self.at_times[t]
-        return q, w, self.equation.accel(t, q, w)
+        return q, w, self.accel(t, q, w)
+
+    def accel(self, t, q, w) -> float:
+        """q'' at a state, the windows' loads as they act from there on."""
+        self.equation.acting = self.equation.modes(q, w)
+        return self.equation.accel(t, q, w)
 
     def event_state(self, event) -> tuple:
         """(t, q, w, q'') at an event asked."""
         t, q, w = self.events[event]
         if self.rest is not None and t >= self.rest[0]:
             return t, self.rest[1], 0.0, 0.0
-        return t, q, w, self.equation.accel(t, q, w)
+        return t, q, w, self.accel(t, q, w)
 
 
 def start(mech):
@@ -262,6 +281,8 @@ class _Run:
                 g.terminal = True
             fns = [event_function(e, self.q0, self.sense) for e in wanted] + [stop] + edges
             t_eval = [x for x in self.times if t < x < t1] + [t1]   # the end: the next start
+            self.eq.acting = None
+            self.eq.acting = self.eq.modes(float(y[0]), float(y[1]) or self.sense)
             try:
                 sol = solve_ivp(self.eq.rhs, (t, t1), y, method=METHOD, rtol=self.rtol,
                                 atol=self.rtol * 1e-2, events=fns, t_eval=t_eval,

@@ -47,8 +47,9 @@ _ROUTES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 def route(mech, names) -> tuple:
     """(names, the names to solve, the expressions, the solved design parameters, whether a
-    limit of the motion is asked) of ``names`` (default: the report's) on ``mech``, worked
-    out at the first call and kept with the mechanism, like its plans."""
+    limit of the motion or an answer of a machine's whole motion is asked) of ``names``
+    (default: the report's) on ``mech``, worked out at the first call and kept with the
+    mechanism, like its plans."""
     key = None if names is None else tuple(names)
     routes = _ROUTES.get(mech)
     if routes is None:
@@ -59,7 +60,9 @@ def route(mech, names) -> tuple:
         solve, exprs = expressions.expand(mech, names)
         solved = [n for n in solve if _kind(mech, n) == "design"]
         solve = [n for n in solve if n not in solved]
-        limits = mech.elements is None and _asks_limits(mech, solve)
+        # a limit of the motion, or an answer of a machine's whole motion: not the plan's path
+        limits = mech.elements is None and (_asks_limits(mech, solve) or
+                                            _machine_run(mech, solve) is not None)
         route = routes[key] = (names, solve, exprs, solved, limits)
     return route
 
@@ -71,7 +74,7 @@ def _kind(mech, name):
 
 def _evaluate(mech, q, qdot, qddot, names, method, tol, limits) -> Result:
     """``names`` (none an expression) by the path they need (``limits``: one is a limit of
-    the motion)."""
+    the motion, or an answer of a machine's whole motion)."""
     if mech.elements is None:       # a file with a driver: no vibration modules to import
         run = _machine_run(mech, names)
         if run is not None:             # the motion in time, the periodic regime
@@ -104,7 +107,7 @@ def _with_run(mech, q, qdot, qddot, names, method, tol, limits, kinds, run) -> R
     ``kinds`` it answers, repeated at every driver value of ``q``) with the others by their
     own path."""
     others = [n for n in names if _kind(mech, n) not in kinds]
-    result = _evaluate(mech, q, qdot, qddot, others, method, tol, limits)
+    result = _evaluate(mech, q, qdot, qddot, others, method, tol, _asks_limits(mech, others))
     found = run(mech, [n for n in names if n not in others])
     shape = np.shape(getattr(result.kinematics, "q", None)) if q is not None else ()
     values = {}

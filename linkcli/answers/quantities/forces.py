@@ -26,8 +26,8 @@ def loads_at(mech, solver, kin, names, context=None):
     if not wanted:
         return {}
     values = {n: load.value for n, load in mech.loads.items()}
-    if mech.elements is not None:   # a vibration problem: every load known (input.loads)
-        return values
+    if mech.elements is not None or None not in values.values():
+        return values               # every load known: a vibration problem, a machine's motion
     if len(mech.coordinates) > 1:   # one unknown per driver, by each driver's motion
         values.update(_unknowns_of_drivers(mech, solver, kin))
         return values

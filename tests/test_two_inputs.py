@@ -204,6 +204,15 @@ def test_a_tied_sweep_row_is_the_file_solved_with_the_tie_written_in(tmp_path):
         assert row[name] == pytest.approx(solved[name], rel=1e-9, abs=1e-9)
 
 
+def test_the_python_sweep_takes_ties_as_the_command_does():
+    path = os.path.join(DATA, "five-bar.yaml")
+    rows = _csv(["sweep", path, "--from", "80", "--to", "90", "--steps", "1", "--names",
+                 "yBdot", "--tie", "phi2=150-phi1"])
+    swept = linkcli.load(path).sweep(np.array([80.0, 90.0]), names=["yBdot"],
+                                     ties={"phi2": "150-phi1"})
+    assert list(swept.values["yBdot"]) == pytest.approx([r["yBdot"] for r in rows], rel=1e-9)
+
+
 def test_a_sweep_over_the_second_driver_passes_the_files_position():
     path = os.path.join(DATA, "five-bar.yaml")
     rows = _csv(["sweep", path, "--from", "50", "--to", "70", "--steps", "2", "--driver",

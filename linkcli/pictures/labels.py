@@ -19,7 +19,7 @@ the axes' layout is final.
 """
 from __future__ import annotations
 
-import math
+import functools
 
 import numpy as np
 
@@ -124,12 +124,15 @@ def hits(boxes, segments, pads):
 # --- candidate spots -------------------------------------------------------------------------
 def _moves(size, rings):
     """(m, 2) pixel moves: none first, then ``rings`` rings outwards."""
-    moves = [(0.0, 0.0)]
-    for ring in range(1, rings + 1):
-        r = ring * STEP * size
-        moves += [(r * math.cos(2 * math.pi * i / DIRECTIONS),
-                   r * math.sin(2 * math.pi * i / DIRECTIONS)) for i in range(DIRECTIONS)]
-    return np.array(moves)
+    return _unit_moves(rings) * (STEP * size)
+
+
+@functools.lru_cache(maxsize=None)
+def _unit_moves(rings):
+    angles = 2 * np.pi * np.arange(DIRECTIONS) / DIRECTIONS
+    ring = np.stack([np.cos(angles), np.sin(angles)], axis=1)
+    steps = np.repeat(np.arange(1, rings + 1), DIRECTIONS)[:, None]
+    return np.vstack([np.zeros((1, 2)), steps * np.tile(ring, (rings, 1))])
 
 
 def _overlaps(boxes, others):

@@ -441,7 +441,7 @@ class Similarity:
         self.no_turn(path, "initial values of coordinates")
         out = {}
         for key, value in spec.items():
-            if key == "from":
+            if key in ("from", "mode"):         # a mode's number is no value
                 out[key] = value
                 continue
             name = key[:-4] if key.endswith("_dot") else key

@@ -475,7 +475,7 @@ class Sites:
 
     def _initial(self, value, path):
         for key, v in self.items(value, path):
-            if key == "from":
+            if key in ("from", "mode"):         # a mode's number is no value
                 continue
             name, rate = (key[:-4], True) if str(key).endswith("_dot") else (key, False)
             base = self.bases.get(name)
@@ -495,7 +495,7 @@ class Sites:
 NAME = object()     # a place that holds a name or a word, not a number
 #: the keys of a quantity that hold names, words, mode numbers and powers (no values)
 QUANTITY_WORDS = (
-    "acceleration", "along", "angle", "between", "component", "contact_force",
+    "acceleration", "along", "angle", "between", "component", "contact_force", "driver",
     "instant_centre", "instant_centre_distance", "least_speed", "least_speed_at", "length",
     "load", "normal_acceleration", "normal_to", "point", "reaction", "relative",
     "relative_acceleration", "relative_speed", "rotation", "signed", "slider_force", "speed",

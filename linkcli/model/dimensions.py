@@ -60,7 +60,8 @@ def of_quantity(mech, quantity) -> Dimension:
     if kind in ("reaction", "slider_force"):
         return FORCE_DIM
     if kind == "velocity_ratio":
-        return dimension(mech, quantity.a) / base_dimension(mech.driver.base)
+        per = mech.coordinates[mech.driver_index(quantity.b)] if quantity.b else mech.driver
+        return dimension(mech, quantity.a) / base_dimension(per.base)
     if kind in ("maximum", "minimum", "stroke"):
         return dimension(mech, quantity.a)
     if kind in ("at_maximum", "at_minimum"):

@@ -22,11 +22,19 @@ quantity failed is skipped: its own error is reported already.
 """
 from __future__ import annotations
 
-from linkcli.model.mechanism import VIBRATION, split_rate
+from linkcli.model.mechanism import MACHINE, VIBRATION, split_rate
 from linkcli.input.derived import EXPR
 from linkcli.input.quantities import EITHER, FORCES, LEVEL, RATES, SUFFIX, kind_text
 
-SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration", "points")
+SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration", "points", "motion")
+
+
+#: the sections whose names are the quantities of one analysis, and what they are
+OWN_SECTIONS = {"motion": MACHINE, "vibration": VIBRATION}
+OWN_WORDS = {"motion": ("machine dynamics", "reduced inertias and torques and the answers of "
+                        "the motion in time"),
+             "vibration": ("the vibration analysis", "natural frequencies, modes, matrices, "
+                           "equilibrium, amplitudes")}
 
 
 def split_base(name: str, order: int) -> str:
@@ -72,7 +80,7 @@ class ReportSection:
         if any(base in getattr(self, "failed", ()) for base in _bases(name)):
             return False            # its definition's error is reported already
         order = {"position": 0, "velocity": 1, "acceleration": 2, "statics": 0,
-                 "vibration": 0}[section]
+                 "vibration": 0, "motion": 0}[section]
         base = split_rate(name, quantities)
         if base[0] in quantities and quantities[base[0]].kind == "design":
             raise self.error(path, f"'{name}' is an unknown of 'find': it is listed in the "
@@ -80,13 +88,14 @@ class ReportSection:
         if base[0] in quantities and quantities[base[0]].kind == EXPR:
             self.rate_of(name, quantities[base[0]], base[1], path)
             return True             # an expression: in the section its reader expects
-        vibration = name in quantities and quantities[name].kind in VIBRATION
-        if section == "vibration" or vibration:
-            if not vibration or section != "vibration":
-                raise self.error(path, f"'{name}' is {'' if vibration else 'not '}a quantity of "
-                                 "the vibration analysis", hint="the 'vibration' section lists "
-                                 "natural frequencies, modes, matrices, equilibrium, amplitudes")
-            return True
+        for own, kinds in OWN_SECTIONS.items():
+            belongs = name in quantities and quantities[name].kind in kinds
+            if section == own or belongs:
+                if not belongs or section != own:
+                    what, lists = OWN_WORDS[own]
+                    raise self.error(path, f"'{name}' is {'' if belongs else 'not '}a quantity "
+                                     f"of {what}", hint=f"the '{own}' section lists {lists}")
+                return True
         if section == "statics":
             if name in quantities and quantities[name].kind in FORCES:
                 self.balanced(name, quantities[name], path)

@@ -169,7 +169,9 @@ def test_driver_and_drivers_together_are_refused(tmp_path):
     path = tmp_path / "both.yaml"
     path.write_text(FOURBAR + "driver: {angle: [O, A], value: 90}\n", encoding="utf-8")
     code, _, err = run(["solve", str(path)])
-    assert code == 2 and "key 'drivers'" in err and "not both 'driver' and 'drivers'" in err
+    # the second of the two in the file's order is refused, at its own line
+    assert code == 2 and "both.yaml:10, key 'driver'" in err
+    assert "not both 'drivers' and 'driver'" in err
 
 
 # --- sweeps over one driver ---------------------------------------------------------------
@@ -202,6 +204,15 @@ def test_a_tied_sweep_row_is_the_file_solved_with_the_tie_written_in(tmp_path):
     solved = {line.split(",")[0]: float(line.split(",")[1]) for line in out.splitlines()[1:]}
     for name in names.split(","):
         assert row[name] == pytest.approx(solved[name], rel=1e-9, abs=1e-9)
+
+
+def test_the_python_sweep_takes_ties_as_the_command_does():
+    path = os.path.join(DATA, "five-bar.yaml")
+    rows = _csv(["sweep", path, "--from", "80", "--to", "90", "--steps", "1", "--names",
+                 "yBdot", "--tie", "phi2=150-phi1"])
+    swept = linkcli.load(path).sweep(np.array([80.0, 90.0]), names=["yBdot"],
+                                     ties={"phi2": "150-phi1"})
+    assert list(swept.values["yBdot"]) == pytest.approx([r["yBdot"] for r in rows], rel=1e-9)
 
 
 def test_a_sweep_over_the_second_driver_passes_the_files_position():
@@ -374,3 +385,16 @@ def test_sweep_round_trip_catches_the_other_drivers_standing_still(monkeypatch):
 
     monkeypatch.setattr(Sweeper, "_positions", still)
     assert any("xAdot" in line for line in sweep_mismatches(name))
+
+
+def test_a_planetary_differential_against_willis():
+    """Sun (r_s = 30 mm) and ring (r_r = 90 mm) driven, the planet (r_p = 30 mm) between
+    them: the arm turns at (w_s r_s + w_r r_r) / (r_s + r_r) and the planet at
+    (w_r r_r - w_s r_s) / (2 r_p), from the contact points' speeds (Willis's formula)."""
+    linkage = linkcli.load(os.path.join(DATA, "planetary-differential.yaml"))
+    sun, ring = (c.rate for c in linkage.model.coordinates)
+    values = linkage.solve(names=["arm_angledot", "planet_angledot"]).values
+    rpm = 2 * np.pi / 60
+    assert values["arm_angledot"] * rpm == pytest.approx((sun * 30 + ring * 90) / 120, rel=1e-9)
+    assert values["planet_angledot"] * rpm == pytest.approx((ring * 90 - sun * 30) / 60,
+                                                            rel=1e-9)

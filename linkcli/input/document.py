@@ -148,8 +148,9 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
 
     def inputs_declared(self, data) -> None:
         """A file declares its inputs once: ``driver`` (one), ``drivers`` (several, each
-        driven) or ``coordinates`` (a vibration problem's)."""
-        given = [k for k in ("driver", "drivers", "coordinates") if k in data]
+        driven) or ``coordinates`` (a vibration problem's); the second one in the file's
+        order is the one refused, at its line."""
+        given = [k for k in data if k in ("driver", "drivers", "coordinates")]
         if len(given) > 1:
             self.error((given[1],), f"a file has one of 'driver' (one degree of freedom), "
                        f"'drivers' (several, each with its rates) and 'coordinates' "

@@ -173,8 +173,8 @@ class Equation:
         if not 0 < J < self.limit:
             raise _Blocked(t, q, SolveError(
                 "the reduced inertia J* is zero: nothing with mass moves with the driver"
-                if J <= 0 else f"the reduced inertia J* grows without bound "
-                f"({J / self.limit * LIMIT:.3g} times its value at the start)"))
+                if J <= 0 else f"the reduced inertia J* grows without bound (beyond {LIMIT:g} "
+                "times its value at the start)"))
         if hold:
             Q -= hold * math.copysign(1.0, w) if w else max(-hold, min(hold, Q))
         return (Q - 0.5 * dJ * w * w) / J
@@ -391,15 +391,15 @@ def _torque_quantity():
     return Quantity("Q", "reduced_torque", "q")
 
 
-def _driver_text(mech, q) -> str:
+def _driver_text(mech, q, digits=6) -> str:
     unit, factor = mech.units.display(mech.driver.base, 0)
-    return f"{q / factor:.6g} {unit}"
+    return f"{q / factor:.{digits}g} {unit}"
 
 
 def blocked(mech, exc: _Blocked) -> SolveError:
     detail = getattr(exc.error, "detail", str(exc.error))
     return SolveError(f"the motion reaches a position the mechanism cannot pass at t = "
-                      f"{exc.t:.6g} s, q = {_driver_text(mech, exc.q)}: {detail}",
+                      f"{exc.t:.4g} s, q = {_driver_text(mech, exc.q, 4)}: {detail}",
                       file=mech.file, hint="a singular position (a dead centre of the "
                       "driver): start elsewhere, or drive the mechanism from another member")
 

@@ -152,8 +152,8 @@ class Similarity:
             raise NotUnderstood(path, why)
 
     # the file -----------------------------------------------------------------------------
-    PASS = {"title", "source", "notes", "units", "k", "params", "quantities", "report",
-            "actuators", "statement"}
+    PASS = {"title", "source", "notes", "units", "k", "params", "report", "actuators",
+            "statement"}
     DROP = {"keys", "quiz"}
 
     def apply(self) -> dict:
@@ -479,15 +479,11 @@ class Similarity:
         return self._keys(spec, path, {"coordinate": None,
                                        "amplitude": lambda v, p: self.length(v, power)})
 
-    def sec_motion(self, spec, path):
-        """machine dynamics: the time integrated (the scale keeps time)."""
-        return self._keys(spec or {}, path, {"until": None})
-
     def sec_initial(self, spec, path):
         self.no_turn(path, "initial values of coordinates")
         out = {}
         for key, value in spec.items():
-            if key == "from":
+            if key in ("from", "mode"):         # a mode's number is no value
                 out[key] = value
                 continue
             name = key[:-4] if key.endswith("_dot") else key
@@ -498,6 +494,25 @@ class Similarity:
                 plus(value, 0.0)        # a displacement from equilibrium: no translation
             out[key] = self.length(moved, 0 if kind == "angle" else 1)
         return out
+
+    def sec_quantities(self, value, path):
+        """Quantities are answers, kept; a flywheel's radius of gyration is a length."""
+        def quantity(spec, p):
+            if isinstance(spec, dict) and "flywheel" in spec and "radius" in spec:
+                return dict(spec, radius=self.length(spec["radius"]))
+            return spec
+        return self._each(value, path, quantity)
+
+    def sec_motion(self, spec, path):
+        """The motion of a machine: times and speeds kept (time and angles are), a diagram's
+        scale of torque as a torque (s^2), its angle, areas and coefficients pure numbers."""
+        def regime(v, p):
+            return self._keys(v, p, {
+                "mean_speed": None, "areas": None,
+                "scale": lambda w, q: self._keys(w, q, {"torque": lambda x, r: self.length(x, 2),
+                                                        "angle": None})})
+        return self._keys(spec or {}, path, {"until": None, "regime": regime, "flywheel": None,
+                                             "turns_per_cycle": None})
 
     def sec_find(self, spec, path):
         """Unknowns are params (used where they are, so never scaled); a target scales as
@@ -600,7 +615,7 @@ def frame_class(doc, name, seen=()):
         return None
     if not isinstance(spec, dict):
         return None
-    kinds = [k for k in spec if k not in ("unit", "signed", "decimals")]
+    kinds = [k for k in spec if k not in ("unit", "signed", "decimals", "radius")]
     if not kinds:
         return None
     kind = kinds[0]
@@ -608,6 +623,10 @@ def frame_class(doc, name, seen=()):
         return "invariant"
     if kind in ("angle", "rotation"):
         return "invariant" if order else "angle"
+    if kind == "regime":                    # positions are the driver's angle, turned
+        return "angle" if str(spec[kind]).startswith("at_") else "invariant"
+    if kind == "flywheel":
+        return "invariant"
     if kind in OF_ANOTHER and name not in seen:
         inner = frame_class(doc, spec[kind], seen + (name,))
         return "invariant" if inner in ("invariant", "angle") else None

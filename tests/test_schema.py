@@ -124,6 +124,8 @@ _ALWAYS_LOADER = [           # messages of rules that need the rest of the file
     r"^a file has one of 'driver'",
     r"^the driver load acts on the driver coordinate",   # 'on' names a driver of 'drivers:'
     r"^one load per driver must be unknown",
+    r"^'driver' is for a velocity ratio",
+    r"^'driver' picks one of several drivers",
     r"already fixes: one coordinate takes one driver",
     r"^the driver's name .* is taken by",
     r"^a harmonic excitation needs its frequency",
@@ -192,6 +194,9 @@ _ALWAYS_LOADER = [           # messages of rules that need the rest of the file
     r"^the values of '.*' are given in",
     r"^the two modes of a beat period must differ",
     r"^'unstretched' names no spring",
+    # the periodic regime (input.regime): a sum of the areas, a cycle of an angle driver
+    r"^the areas add up to ",
+    r"turns of an angle driver",
     # a unit written as a product of the tables' units ('N s/m', 'mm/s^2') is free text in the
     # schema: only the loader can tell a product of units from an unknown word
     r"^unknown unit '[^']*'$",

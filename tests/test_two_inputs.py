@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import linkcli
+from linkcli.errors import InputError
 from linkcli.kinematics.closed_form import residuals, unit_rates
 from linkcli.kinematics.solvers import solver_for
 
@@ -84,6 +85,12 @@ def test_arm_end_point_and_jacobian_against_the_closed_form():
     assert jacobian == pytest.approx([1j * l1 * np.exp(1j * t1), 1j * l2 * np.exp(1j * t2)],
                                      abs=1e-12)
     assert kin.vel["B"] == pytest.approx(jacobian[0] * w1 + jacobian[1] * w2, abs=1e-12)
+    answers = linkcli.load(os.path.join(DATA, "arm-2r.yaml")).solve(
+        names=["J11", "J12", "J21", "J22"]).values          # the Jacobian as answers, m/deg
+    per_deg = np.pi / 180
+    assert [answers[n] for n in ("J11", "J12", "J21", "J22")] == pytest.approx(
+        [jacobian[0].real * per_deg, jacobian[1].real * per_deg, jacobian[0].imag * per_deg,
+         jacobian[1].imag * per_deg], abs=1e-12)
     a = (1j * e1 - w1 ** 2) * l1 * np.exp(1j * t1) + (1j * e2 - w2 ** 2) * l2 * np.exp(1j * t2)
     assert kin.acc["B"] == pytest.approx(a, abs=1e-12)
 
@@ -163,7 +170,9 @@ def test_driver_and_drivers_together_are_refused(tmp_path):
     path = tmp_path / "both.yaml"
     path.write_text(FOURBAR + "driver: {angle: [O, A], value: 90}\n", encoding="utf-8")
     code, _, err = run(["solve", str(path)])
-    assert code == 2 and "key 'drivers'" in err and "not both 'driver' and 'drivers'" in err
+    # the second of the two in the file's order is refused, at its own line
+    assert code == 2 and "both.yaml:10, key 'driver'" in err
+    assert "not both 'drivers' and 'driver'" in err
 
 
 # --- sweeps over one driver ---------------------------------------------------------------
@@ -196,6 +205,15 @@ def test_a_tied_sweep_row_is_the_file_solved_with_the_tie_written_in(tmp_path):
     solved = {line.split(",")[0]: float(line.split(",")[1]) for line in out.splitlines()[1:]}
     for name in names.split(","):
         assert row[name] == pytest.approx(solved[name], rel=1e-9, abs=1e-9)
+
+
+def test_the_python_sweep_takes_ties_as_the_command_does():
+    path = os.path.join(DATA, "five-bar.yaml")
+    rows = _csv(["sweep", path, "--from", "80", "--to", "90", "--steps", "1", "--names",
+                 "yBdot", "--tie", "phi2=150-phi1"])
+    swept = linkcli.load(path).sweep(np.array([80.0, 90.0]), names=["yBdot"],
+                                     ties={"phi2": "150-phi1"})
+    assert list(swept.values["yBdot"]) == pytest.approx([r["yBdot"] for r in rows], rel=1e-9)
 
 
 def test_a_sweep_over_the_second_driver_passes_the_files_position():
@@ -301,9 +319,25 @@ def test_loads_of_several_drivers_refused_at_their_line(tmp_path, old, new, word
     assert code == 2 and words in err
 
 
-def test_joint_forces_of_several_drivers_are_refused_by_name():
-    code, _, err = run(["solve", os.path.join(DATA, "arm-2r-loads.yaml"), "--reactions"])
-    assert code == 2 and "joint forces of a mechanism of several drivers are not solved" in err
+@pytest.mark.parametrize("masses", [False, True])
+def test_joint_forces_agree_with_virtual_work_and_each_body_balances(masses):
+    """Newton-Euler with a column per unknown load gives the drivers' torques of the virtual
+    work (a free-body check of another method), and the fore arm's moments about A add up:
+    M2 + (B - A) x (P - m (a_B - g)) = 0."""
+    from linkcli.forces.joint_forces import solve
+    from linkcli.kinematics.solvers import state
+    text = _arm_text()
+    if masses:
+        text = text.replace("report:", "dynamics:\n  gravity: 9.81\n  masses: {B: 3}\n"
+                            "report:").replace("rate: 1.5}", "rate: 1.5, accel: 2}")
+    mech, (m1, m2) = _loads(text)
+    kin, _ = state(mech)
+    reactions = solve(mech, kin)
+    assert [reactions.loads["M1"], reactions.loads["M2"]] == pytest.approx([m1, m2], rel=1e-9)
+    a, b = kin.pos["A"], kin.pos["B"]
+    inertia = 3 * (kin.acc["B"] + 9.81j) if masses else 0
+    net = (10 - 20j) - inertia
+    assert m2 + (np.conj(b - a) * net).imag == pytest.approx(0, abs=1e-9)
 
 
 def test_unknown_loads_that_do_the_same_work_are_refused():
@@ -352,3 +386,45 @@ def test_sweep_round_trip_catches_the_other_drivers_standing_still(monkeypatch):
 
     monkeypatch.setattr(Sweeper, "_positions", still)
     assert any("xAdot" in line for line in sweep_mismatches(name))
+
+
+def test_a_planetary_differential_against_willis():
+    """Sun (r_s = 30 mm) and ring (r_r = 90 mm) driven, the planet (r_p = 30 mm) between
+    them: the arm turns at (w_s r_s + w_r r_r) / (r_s + r_r) and the planet at
+    (w_r r_r - w_s r_s) / (2 r_p), from the contact points' speeds (Willis's formula)."""
+    linkage = linkcli.load(os.path.join(DATA, "planetary-differential.yaml"))
+    sun, ring = (c.rate for c in linkage.model.coordinates)
+    values = linkage.solve(names=["arm_angledot", "planet_angledot"]).values
+    rpm = 2 * np.pi / 60
+    assert values["arm_angledot"] * rpm == pytest.approx((sun * 30 + ring * 90) / 120, rel=1e-9)
+    assert values["planet_angledot"] * rpm == pytest.approx((ring * 90 - sun * 30) / 60,
+                                                            rel=1e-9)
+
+
+# --- the Python API: each driver by name -------------------------------------------------
+def _rewritten(replacements):
+    with open(os.path.join(DATA, "five-bar.yaml"), encoding="utf-8") as handle:
+        text = handle.read()
+    for old, new in replacements:
+        assert old in text
+        text = text.replace(old, new)
+    return linkcli.loads(text, name="five-bar.yaml").solve().values
+
+
+def test_api_sets_each_driver_by_name_as_the_file_would():
+    linkage = linkcli.load(os.path.join(DATA, "five-bar.yaml"))
+    got = linkage.solve({"phi1": 30, "phi2": 100}, {"phi2": -2}, {"phi1": 1.5}).values
+    want = _rewritten([("value: 90, rate: 10, accel: 0", "value: 30, rate: 10, accel: 1.5"),
+                       ("value: 60, rate: -5", "value: 100, rate: -2")])
+    assert set(got) == set(want)
+    for name in want:
+        assert got[name] == pytest.approx(want[name], rel=1e-12, abs=1e-9), name
+
+
+@pytest.mark.parametrize("q, words", [((30.0, 100.0), "a list or tuple would read"),
+                                      ({"phi3": 1}, "phi3: not a driver"),
+                                      ({"phi2": [1, 2]}, "takes one value per call")])
+def test_api_refuses_driver_values_it_would_misread(q, words):
+    linkage = linkcli.load(os.path.join(DATA, "five-bar.yaml"))
+    with pytest.raises(InputError, match=words):
+        linkage.solve(q)

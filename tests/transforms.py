@@ -407,11 +407,6 @@ class Sites:
                 self._numbers(value, path)
         return read
 
-    def _motion(self, value, path):
-        """``motion:`` (machine dynamics): the longest time integrated."""
-        if value is not None:
-            self._only(value, path, {"until": "time"})
-
     def _when(self, value, path):
         """A machine's event: stop, or a time, a speed (the driver's rate), a distance
         travelled (the driver's unit) or a number of turns."""
@@ -425,8 +420,26 @@ class Sites:
         for name, spec in self.items(value, path):
             known = dict.fromkeys(QUANTITY_WORDS, NAME)
             known.update({"from": limit_kind, "to": limit_kind, "time": "time",
-                          "axis": self._axis, "when": self._when})
+                          "axis": self._axis, "radius": "length", "when": self._when})
             self._only(spec, path + (name,), known)
+
+    def _motion(self, value, path):
+        """The motion of a machine (docs/machines.md): the time integrated, the periodic
+        regime's mean speed (the driver's rate) and a diagram's areas (pure numbers) with
+        the scales of its drawing, the coefficient of fluctuation and the turns of a cycle."""
+        if value is None:
+            return
+        self._only(value, path, {"until": "time", "regime": self._regime,
+                                 "flywheel": lambda v, p: self._only(v, p, {"fluctuation": None}),
+                                 "turns_per_cycle": None})
+
+    def _regime(self, value, path):
+        rate = "angular_rate" if self.driver_base == "angle" else "length_rate"
+        self._only(value, path, {
+            "mean_speed": rate,
+            "areas": lambda v, p: [self.put(p + (i,), None, a) for i, a in enumerate(v)]
+            if isinstance(v, list) else self._numbers(v, p),
+            "scale": lambda v, p: self._only(v, p, {"torque": "torque", "angle": "angle"})})
 
     def _axis(self, value, path):
         if isinstance(value, dict):
@@ -506,7 +519,7 @@ class Sites:
 
     def _initial(self, value, path):
         for key, v in self.items(value, path):
-            if key == "from":
+            if key in ("from", "mode"):         # a mode's number is no value
                 continue
             name, rate = (key[:-4], True) if str(key).endswith("_dot") else (key, False)
             base = self.bases.get(name)
@@ -526,7 +539,7 @@ class Sites:
 NAME = object()     # a place that holds a name or a word, not a number
 #: the keys of a quantity that hold names, words, mode numbers and powers (no values)
 QUANTITY_WORDS = (
-    "acceleration", "along", "angle", "between", "component", "contact_force",
+    "acceleration", "along", "angle", "between", "component", "contact_force", "driver",
     "instant_centre", "instant_centre_distance", "least_speed", "least_speed_at", "length",
     "load", "normal_acceleration", "normal_to", "point", "reaction", "relative",
     "relative_acceleration", "relative_speed", "rotation", "signed", "slider_force", "speed",
@@ -538,7 +551,8 @@ QUANTITY_WORDS = (
     "equilibrium", "force_amplitude", "forcing_frequency", "free_response", "mass_matrix",
     "mode_shape", "natural_frequency", "phase", "spring_force", "stiffness_matrix",
     "transmissibility", "expr", "centre_distance", "contact_ratio", "min_teeth", "with",
-    "reduced_inertia", "reduced_inertia_slope", "reduced_torque", "motion")
+    "regime", "flywheel", "reduced_inertia", "reduced_inertia_slope", "reduced_torque",
+    "motion")
 IGNORED = {"title", "source", "notes", "statement", "units", "k", "report", "keys", "quiz",
            "equilibrium"}
 

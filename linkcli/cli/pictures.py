@@ -22,12 +22,14 @@ from linkcli.errors import InputError
               help="Vibrations: free response from 'initial', linear and nonlinear (s).")
 @click.option("--vary", default=None, metavar="NAME=FROM:TO:STEPS",
               help="Answers against a parameter of 'params' (any file, vibrations too).")
+@click.option("--regime", is_flag=True, help="Machines: the speed over a cycle of the periodic "
+              "regime and the turning-moment diagram with the areas that size the flywheel.")
 @click.option("--y", "names", multiple=True, metavar="NAME",
               help="A quantity of the report (repeat for more panels), e.g. --y c --y cdot; "
                    "with --frf or --free, coordinates (default: every free one).")
 @K_OPTION
 @PICTURE_OPTION
-def plot(file, sweep, frf, modes, free, vary, names, k, output):
+def plot(file, sweep, frf, modes, free, vary, regime, names, k, output):
     """Plot quantities of FILE against the driver, or a vibration problem's response.
 
     \b
@@ -36,14 +38,21 @@ def plot(file, sweep, frf, modes, free, vary, names, k, output):
       linkcli plot mechanisms/fourbar-inverse-dynamics.yaml --sweep 0:360:360 --y Mm -o mm.png
       linkcli plot mechanisms/polimi-2001-09-18-vibration.yaml --modes -o modes.png
       linkcli plot mechanisms/polimi-2001-09-18-vibration.yaml --vary ks=50:150:50 --y w1 -o w.png
+      linkcli plot mechanisms/khurmi-16-12-engine-and-machine-torques.yaml --regime -o tm.png
     """
     chosen = [flag for flag, value in (("--sweep", sweep), ("--frf", frf), ("--modes", modes),
-                                       ("--free", free), ("--vary", vary)) if value]
+                                       ("--free", free), ("--vary", vary),
+                                       ("--regime", regime)) if value]
     if len(chosen) != 1:
-        raise InputError("give one of --sweep, --frf, --modes, --free, --vary", key="plot",
-                         hint="--sweep FROM:TO:STEPS --y NAME for a mechanism with a driver")
+        raise InputError("give one of --sweep, --frf, --modes, --free, --vary, --regime",
+                         key="plot", hint="--sweep FROM:TO:STEPS --y NAME for a mechanism "
+                         "with a driver")
     not_an_input(output, file)
     mech = load(file, k, designed=not vary)     # a design question: solved at each value
+    if regime:
+        from linkcli.pictures.regime import plot_regime
+        plot_regime(mech, output)
+        return
     if vary:
         from linkcli.pictures.plotting import plot_vary
         plot_vary(mech, vary, list(names), output)

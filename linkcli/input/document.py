@@ -35,6 +35,7 @@ from linkcli.input.dynamics import DynamicsReader
 from linkcli.input.elements import ElementsReader
 from linkcli.input.loads import LoadsSection
 from linkcli.input.machine import MachineSection, is_machine
+from linkcli.input.regime import RegimeSection
 from linkcli.input.reader import (NAME, UNKNOWN, InputErrors, Reader, _kind, _Skip,
                                   reserved_parameter)
 
@@ -42,7 +43,7 @@ TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points
             "actuators", "sliders", "driver", "drivers", "coordinates", "loads", "quantities",
             "report",
             "keys", "dynamics", "springs", "dampers", "excitation", "initial", "equilibrium",
-            "rolling", "cords", "statement", "quiz", "find", "gears", "motion"}
+            "rolling", "cords", "statement", "quiz", "find", "motion", "gears"}
 VIBRATION_KEYS = ("springs", "dampers", "excitation", "initial", "equilibrium")
 
 __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS", "UNKNOWN",
@@ -52,7 +53,7 @@ __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS
 class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSection,
              TextbookQuantities, ForceQuantities, LimitsSection, VibrationQuantities,
              ReportSection, KeysSection, DerivedSection, OscillationSection, FindSection,
-             GearsSection, MachineSection):
+             MachineSection, RegimeSection, GearsSection):
     """The whole document: units, params, frame and points, then each section."""
 
     def parse(self) -> Mechanism:
@@ -93,6 +94,7 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
                                "its coordinates", hint="replace 'driver:' by 'coordinates:', "
                                "e.g. coordinates: {theta: {angle: [O, A]}}")
         self.driver_base = driver.base if driver is not None else "angle"
+        self.driver_of_file = driver
         machine = self.machine = is_machine(data)
         if machine and "coordinates" in data:
             self.error(("coordinates",), "the motion under given loads is of a mechanism with "
@@ -126,7 +128,7 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
                          statement=self.block(self.statement, data) or "",
                          quiz=self.block(self.quiz, data, report) or Quiz(),
                          params={n: v for n, v in self.names.items()}, design=design,
-                         gears=self.gear_table, motion=motion)
+                         motion=motion, gears=self.gear_table)
         if "dynamics" in data:
             mech.dynamics = DynamicsReader(self, mech, _Skip).run(data["dynamics"])
         if "coordinates" in data:   # after the dynamics: an element may name a rolling disc
@@ -146,8 +148,9 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
 
     def inputs_declared(self, data) -> None:
         """A file declares its inputs once: ``driver`` (one), ``drivers`` (several, each
-        driven) or ``coordinates`` (a vibration problem's)."""
-        given = [k for k in ("driver", "drivers", "coordinates") if k in data]
+        driven) or ``coordinates`` (a vibration problem's); the second one in the file's
+        order is the one refused, at its line."""
+        given = [k for k in data if k in ("driver", "drivers", "coordinates")]
         if len(given) > 1:
             self.error((given[1],), f"a file has one of 'driver' (one degree of freedom), "
                        f"'drivers' (several, each with its rates) and 'coordinates' "

@@ -24,12 +24,14 @@ import numpy as np
 from linkcli.errors import ExpressionError
 from linkcli.input import expressions
 from linkcli.model.machine import Characteristic, MotionSpec
+from linkcli.input.regime import MOTION_KEYS as REGIME_KEYS
 from linkcli.model.mechanism import MACHINE, Quantity
+from linkcli.model.regime import KINDS as REGIME_KINDS
 
 #: what ``motion:`` answers, and the events ``when:`` names (or ``stop``)
 ANSWERS = ("speed", "acceleration", "turned", "turns", "time")
 EVENTS = ("time", "speed", "turned", "turns")
-MOTION_KEYS = {"until"}
+MOTION_KEYS = {"until"} | REGIME_KEYS
 MOTOR_KEYS = {"stall", "no_load", "speeds", "torques", "torque"}
 #: the names a motor's expression reads besides the params: speed, driver value, time
 MOTOR_NAMES = ("w", "q", "t")
@@ -68,7 +70,8 @@ class MachineSection:
             if not until > 0 or not math.isfinite(until):
                 raise self.error(path + ("until",), f"'until' is a positive time, got "
                                  f"{spec['until']!r}")
-        return MotionSpec(until)
+        regime = self.regime_spec(spec, path, units, self.driver_of_file)
+        return MotionSpec(until, {"regime": regime} if regime is not None else {})
 
     def window(self, value, path, units, driver):
         """``over: [q1, q2]``: the driver's window a load acts in (SI), None without one."""
@@ -153,6 +156,8 @@ class MachineSection:
 
     def machine_quantity(self, name, value, path) -> Quantity:
         """``reduced_inertia: q`` and the like, or ``{motion: ANSWER, when: EVENT}``."""
+        if isinstance(value, dict) and any(k in value for k in REGIME_KINDS):
+            return self.regime_quantity(name, value, path)
         value = self.mapping(value, path, set(MACHINE) | {"when", "unit"})
         kind, where, arg = self.one_kind(value, path, MACHINE)
         line = self.doc.line(path)

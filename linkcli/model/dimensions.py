@@ -10,6 +10,7 @@ dimension of the value it is written as on its own (``k: ks`` makes ``ks`` a sti
 from __future__ import annotations
 
 from linkcli.model.mechanism import MACHINE, split_rate
+from linkcli.model.regime import KINDS as REGIME_KINDS, regime_dimension
 from linkcli.model.units import ANGLE_DIM, DIMENSIONS, FORCE_DIM, LENGTH_DIM, MASS_DIM, NONE, \
     TIME_DIM, Dimension
 
@@ -60,7 +61,8 @@ def of_quantity(mech, quantity) -> Dimension:
     if kind in ("reaction", "slider_force"):
         return FORCE_DIM
     if kind == "velocity_ratio":
-        return dimension(mech, quantity.a) / base_dimension(mech.driver.base)
+        per = mech.coordinates[mech.driver_index(quantity.b)] if quantity.b else mech.driver
+        return dimension(mech, quantity.a) / base_dimension(per.base)
     if kind in ("maximum", "minimum", "stroke"):
         return dimension(mech, quantity.a)
     if kind in ("at_maximum", "at_minimum"):
@@ -83,7 +85,9 @@ def of_quantity(mech, quantity) -> Dimension:
 def machine_dimension(mech, quantity) -> Dimension:
     """J* (an inertia for an angle driver, a mass for a length one), dJ*/dq, the reduced
     torque (a torque or a force), and the motion's answers (the driver's unit, its rates,
-    turns, a time)."""
+    turns, a time); the periodic regime's and the flywheel's (model.regime)."""
+    if quantity.kind in REGIME_KINDS:
+        return regime_dimension(mech, quantity)
     base = base_dimension(mech.driver.base)
     angular = mech.driver.base == "angle"
     inertia = MASS_DIM * LENGTH_DIM ** 2 if angular else MASS_DIM

@@ -210,7 +210,8 @@ class Quantity:
       magnitude, or along / normal (left) to ``axis``: ('body', NAME) a body's axis,
       ('points', P, Q) the vector P -> Q, ('angle', radians) a fixed direction (None: the
       axis of body ``b``); 'slider_force' of slider ``a``, ``component`` normal or friction;
-    - 'velocity_ratio': d(a)/dq of the quantity named ``a``;
+    - 'velocity_ratio': d(a)/dq of the quantity named ``a`` (with several drivers, d(a)/dq_b
+      of the driver named ``b``, the others at rest: a column of the Jacobian);
     - 'least_speed', 'least_speed_at': of the line through points ``a`` and ``b`` of one
       body, the least speed of its points and where it is (distance from a along a->b);
     - the limits of the motion (kinds in LIMITS) of the quantity named ``a`` over the
@@ -242,6 +243,8 @@ class Quantity:
     #: of the characteristic polynomial's coefficient, 'monic' (divided by the leading one)
     form: str | None = None
     axis: tuple | None = None      # a joint force's direction of projection (see above)
+    #: a flywheel's radius of gyration (m): the answer is then its mass (model.regime)
+    radius: float | None = None
 
     @property
     def rates(self) -> int:
@@ -277,7 +280,8 @@ REPORT_SECTIONS = ("design", "position", "velocity", "acceleration", "statics", 
 #: quantity kinds of machine dynamics (input.machine): one value at the driver's state, or
 #: of the motion in time (kind 'motion': ``a`` the answer, ``b`` the event, ``time`` its
 #: value in SI)
-MACHINE = ("reduced_inertia", "reduced_inertia_slope", "reduced_torque", "motion")
+MACHINE = ("reduced_inertia", "reduced_inertia_slope", "reduced_torque", "motion", "regime",
+           "flywheel")
 
 #: quantity kinds of the vibration analysis (each is also the YAML key that asks for it)
 VIBRATION = ("natural_frequency", "damped_frequency", "damping_ratio", "mode_shape",
@@ -370,10 +374,10 @@ class Mechanism:
     source: object = None
     #: a design question (``find:``, model.design.Design), None when absent
     design: object = None
-    #: name -> model.gears.Gear: the gears given by their teeth (``gears:``)
-    gears: dict = field(default_factory=dict)
     #: the ``motion:`` section of machine dynamics (model.machine.MotionSpec), None when absent
     motion: object = None
+    #: name -> model.gears.Gear: the gears given by their teeth (``gears:``)
+    gears: dict = field(default_factory=dict)
 
     def __post_init__(self):
         if not self.coordinates:
@@ -408,6 +412,10 @@ class Mechanism:
                              hint="give one load, usually the driver's, the value 'unknown'")
         return load
 
+    def driver_index(self, name: str | None) -> int:
+        """The place of the driver ``name`` among the coordinates (None: the first, q)."""
+        return 0 if name is None else [c.name for c in self.coordinates].index(name)
+
     def unknown_loads(self) -> list:
         """The unknown loads, one per driver of a mechanism of several drivers."""
         return [load for load in self.loads.values() if load.value is None]
@@ -417,8 +425,8 @@ class Mechanism:
         (the driver it acts on, ``target``, with several drivers), else 'force'."""
         driver = next((c for c in self.coordinates if c.name == load.target), self.driver) \
             if load.kind == "driver" else None
-        if load.kind in ("torque", "motor", "brake") or \
-                driver is not None and driver.kind == "angle":
+        if load.kind in ("torque", "motor", "brake") or driver is not None and \
+                driver.kind == "angle":
             return "torque"
         return "force"
 
@@ -430,10 +438,13 @@ def split_rate(name: str, names=()):
     'wd'); the reading whose base is one of ``names`` (the file's quantities) is taken, and
     the second rate where none or both are (both defined is refused when the file is read:
     input.quantities)."""
-    readings = [(name[:-len(suffix)], order) for suffix, order in (("ddot", 2), ("dot", 1))
-                if name.endswith(suffix) and len(name) > len(suffix)]
-    known = [r for r in readings if r[0] in names]
-    return (known or readings or [(name, 0)])[0]
+    if not name.endswith("dot"):        # no reading as a rate
+        return name, 0
+    if name.endswith("ddot") and len(name) > 4:
+        if name[:-4] in names or name[:-3] not in names:
+            return name[:-4], 2
+        return name[:-3], 1
+    return (name[:-3], 1) if len(name) > 3 else (name, 0)
 
 
 def limit_refusal(name: str, quantity: Quantity, order: int) -> str | None:

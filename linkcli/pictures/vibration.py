@@ -283,7 +283,7 @@ def free(mech, span: str, names, output: str, dpi: int = 100) -> None:
     _require_vibration(mech, "a time response")
     analysis = analyse(mech)
     lin = analysis.lin
-    if not mech.elements.initial and mech.elements.initial_from[0] == "equilibrium":
+    if not mech.elements.started:
         raise InputError("a time response starts from 'initial:'", file=mech.file,
                          key="initial", hint="e.g. initial: {theta: 2, theta_dot: 0}")
     t = _times(lin, span)

@@ -148,7 +148,8 @@ def _unknowns_of_drivers(mech, solver, kin) -> dict:
         from linkcli.forces.friction import has_losses
         if has_losses(mech.dynamics):
             raise InputError("friction losses with several drivers are not solved: the "
-                             "joint forces they need take one unknown load", file=mech.file,
-                             key="dynamics", hint="leave friction out, or drive one input")
+                             "friction's iteration on the joint forces finds one unknown "
+                             "load", file=mech.file, key="dynamics",
+                             hint="leave friction out, or drive one input")
         extra = [dynamic_power(mech, kin, unit) for unit in units]
     return unknown_loads(mech, kin.pos, [u.vel for u in units], extra, q=tuple(kin.coords))

@@ -10,6 +10,7 @@ import weakref
 
 import numpy as np
 
+from linkcli.errors import InputError
 from linkcli.forces.machine import Machine, require_known
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.dimensions import machine_dimension
@@ -61,6 +62,11 @@ def machine_dimension_of(mech, kind):
 
 def reduced_value(mech, quantity, kin) -> tuple:
     """(value in display units, unit) of J*, dJ*/dq or Q at the solved state ``kin``."""
+    if quantity.kind not in KINDS:      # the whole motion's answers are the runs'
+        raise InputError(f"'{quantity.name}' is an answer of the machine's whole motion, one "
+                         "value: an expression or a sweep over the driver cannot read it",
+                         file=mech.file, key=f"quantities.{quantity.name}", line=quantity.line,
+                         hint="print it with 'linkcli solve'")
     machine = machine_for(mech)
     q = np.atleast_1d(np.asarray(kin.q, dtype=float))
     c = machine.coefficients(q.ravel())

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import linkcli
+from linkcli.errors import InputError
 from linkcli.kinematics.closed_form import residuals, unit_rates
 from linkcli.kinematics.solvers import solver_for
 
@@ -206,6 +207,15 @@ def test_a_tied_sweep_row_is_the_file_solved_with_the_tie_written_in(tmp_path):
         assert row[name] == pytest.approx(solved[name], rel=1e-9, abs=1e-9)
 
 
+def test_the_python_sweep_takes_ties_as_the_command_does():
+    path = os.path.join(DATA, "five-bar.yaml")
+    rows = _csv(["sweep", path, "--from", "80", "--to", "90", "--steps", "1", "--names",
+                 "yBdot", "--tie", "phi2=150-phi1"])
+    swept = linkcli.load(path).sweep(np.array([80.0, 90.0]), names=["yBdot"],
+                                     ties={"phi2": "150-phi1"})
+    assert list(swept.values["yBdot"]) == pytest.approx([r["yBdot"] for r in rows], rel=1e-9)
+
+
 def test_a_sweep_over_the_second_driver_passes_the_files_position():
     path = os.path.join(DATA, "five-bar.yaml")
     rows = _csv(["sweep", path, "--from", "50", "--to", "70", "--steps", "2", "--driver",
@@ -376,3 +386,45 @@ def test_sweep_round_trip_catches_the_other_drivers_standing_still(monkeypatch):
 
     monkeypatch.setattr(Sweeper, "_positions", still)
     assert any("xAdot" in line for line in sweep_mismatches(name))
+
+
+def test_a_planetary_differential_against_willis():
+    """Sun (r_s = 30 mm) and ring (r_r = 90 mm) driven, the planet (r_p = 30 mm) between
+    them: the arm turns at (w_s r_s + w_r r_r) / (r_s + r_r) and the planet at
+    (w_r r_r - w_s r_s) / (2 r_p), from the contact points' speeds (Willis's formula)."""
+    linkage = linkcli.load(os.path.join(DATA, "planetary-differential.yaml"))
+    sun, ring = (c.rate for c in linkage.model.coordinates)
+    values = linkage.solve(names=["arm_angledot", "planet_angledot"]).values
+    rpm = 2 * np.pi / 60
+    assert values["arm_angledot"] * rpm == pytest.approx((sun * 30 + ring * 90) / 120, rel=1e-9)
+    assert values["planet_angledot"] * rpm == pytest.approx((ring * 90 - sun * 30) / 60,
+                                                            rel=1e-9)
+
+
+# --- the Python API: each driver by name -------------------------------------------------
+def _rewritten(replacements):
+    with open(os.path.join(DATA, "five-bar.yaml"), encoding="utf-8") as handle:
+        text = handle.read()
+    for old, new in replacements:
+        assert old in text
+        text = text.replace(old, new)
+    return linkcli.loads(text, name="five-bar.yaml").solve().values
+
+
+def test_api_sets_each_driver_by_name_as_the_file_would():
+    linkage = linkcli.load(os.path.join(DATA, "five-bar.yaml"))
+    got = linkage.solve({"phi1": 30, "phi2": 100}, {"phi2": -2}, {"phi1": 1.5}).values
+    want = _rewritten([("value: 90, rate: 10, accel: 0", "value: 30, rate: 10, accel: 1.5"),
+                       ("value: 60, rate: -5", "value: 100, rate: -2")])
+    assert set(got) == set(want)
+    for name in want:
+        assert got[name] == pytest.approx(want[name], rel=1e-12, abs=1e-9), name
+
+
+@pytest.mark.parametrize("q, words", [((30.0, 100.0), "a list or tuple would read"),
+                                      ({"phi3": 1}, "phi3: not a driver"),
+                                      ({"phi2": [1, 2]}, "takes one value per call")])
+def test_api_refuses_driver_values_it_would_misread(q, words):
+    linkage = linkcli.load(os.path.join(DATA, "five-bar.yaml"))
+    with pytest.raises(InputError, match=words):
+        linkage.solve(q)

@@ -198,6 +198,30 @@ class FormulaLimit(SolveError):
         self.items = tuple(items)
 
 
+class ClutchError(SolveError):
+    """Two shafts and a clutch (or a brake) that cannot do what is asked: ``reason``
+    'never engages' (the friction torque can never equalise the speeds) or 'slips again'
+    (after engagement the torque the clutch must pass exceeds its capacity); ``values``
+    the numbers the message names (N m, rad/s^2, s)."""
+
+    def __init__(self, detail: str, *, reason: str, values=None, **kw):
+        super().__init__(detail, **kw)
+        self.reason = reason
+        self.values = dict(values or {})
+
+
+class EfficiencyError(SolveError):
+    """An efficiency that is not defined where it is asked: ``reason`` 'no input' (the
+    unknown load does not drive the mechanism: its power is not positive) or 'no ideal
+    output' (without friction the unknown load would be zero); ``values`` the powers or
+    loads the message names."""
+
+    def __init__(self, detail: str, *, reason: str, values=None, **kw):
+        super().__init__(detail, **kw)
+        self.reason = reason
+        self.values = dict(values or {})
+
+
 @dataclass
 class Caution:
     """A result that is given, but that the reader must look at: a figure far from the

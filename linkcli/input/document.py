@@ -21,6 +21,7 @@ from linkcli.input.source import Document
 from linkcli.input.quantities import QuantitiesSection
 from linkcli.input.textbook import TextbookQuantities
 from linkcli.input.forces import ForceQuantities
+from linkcli.input.efficiency import EfficiencyQuantities
 from linkcli.input.limits import LimitsSection
 from linkcli.input.vibration import VibrationQuantities
 from linkcli.input.report import SECTIONS, ReportSection
@@ -47,7 +48,7 @@ __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS
 
 
 class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSection,
-             TextbookQuantities, ForceQuantities, LimitsSection, VibrationQuantities,
+             TextbookQuantities, ForceQuantities, EfficiencyQuantities, LimitsSection, VibrationQuantities,
              ReportSection, KeysSection, DerivedSection, OscillationSection, FindSection):
     """The whole document: units, params, frame and points, then each section."""
 

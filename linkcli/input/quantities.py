@@ -25,6 +25,7 @@ from linkcli.model.mechanism import LIMITS, VIBRATION, Quantity
 from linkcli.model.units import ANGLE, FORCE, LENGTH, TORQUE
 from linkcli.input.derived import EXPR
 from linkcli.input.oscillation import OSCILLATION
+from linkcli.input.efficiency import EFFICIENCY
 
 #: the kinds of a geometric quantity, each the YAML key that asks for it
 GEOMETRY = ("angle", "length", "x", "y", "load", "speed", "acceleration",
@@ -43,7 +44,7 @@ LEVEL = {"speed": 1, "relative_speed": 1, "acceleration": 2, "tangential_acceler
 #: quantities of the position alone, listed with the positions or the velocities
 EITHER = ("instant_centre", "instant_centre_distance", "velocity_ratio", "least_speed_at")
 #: forces, listed with the statics
-FORCES = ("load", "reaction", "slider_force", "tension", "contact_force")
+FORCES = ("load", "reaction", "slider_force", "tension", "contact_force") + EFFICIENCY
 #: the quantities a velocity ratio may be of: those whose rate is linear in the velocities
 RATIO_OF = ("q", "x", "y", "angle", "length", "along", "normal_to", "relative", "rotation",
             "between")
@@ -146,6 +147,8 @@ class QuantitiesSection:
             return self.limit_quantity(name, value, path)
         if isinstance(value, dict) and EXPR in value:
             return self.expression_quantity(name, value, path)
+        if isinstance(value, dict) and any(k in value for k in EFFICIENCY):
+            return self.efficiency_quantity(name, value, path, loads)
         value = self.mapping(value, path, set(GEOMETRY) | {"component", "unit", "point",
                                                            "signed", "axis"})
         kinds = [k for k in GEOMETRY if k in value]

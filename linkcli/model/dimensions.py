@@ -59,6 +59,10 @@ def of_quantity(mech, quantity) -> Dimension:
         return DIMENSIONS[mech.load_unit_kind(mech.loads[quantity.a])]
     if kind in ("reaction", "slider_force"):
         return FORCE_DIM
+    if kind in ("ideal_load", "reverse_load"):
+        return DIMENSIONS[mech.load_unit_kind(mech.loads[quantity.a])]
+    if kind in ("efficiency", "self_locking"):
+        return NONE
     if kind == "velocity_ratio":
         return dimension(mech, quantity.a) / base_dimension(mech.driver.base)
     if kind in ("maximum", "minimum", "stroke"):

@@ -368,8 +368,17 @@ class Sites:
         for name, spec in self.items(value, path):
             known = dict.fromkeys(QUANTITY_WORDS, NAME)
             known.update({"from": limit_kind, "to": limit_kind, "time": "time",
-                          "axis": self._axis})
+                          "axis": self._axis, "stages": self._pure, "powers": self._pure})
             self._only(spec, path + (name,), known)
+
+    def _pure(self, value, path):
+        """A list of pure numbers (docs/dynamics.md: stages' efficiencies, and input powers of
+        which only the ratios count): kept as written."""
+        if not isinstance(value, list):
+            self._numbers(value, path)
+            return
+        for i, v in enumerate(value):
+            self.put(path + (i,), None, v)
 
     def _axis(self, value, path):
         if isinstance(value, dict):
@@ -480,7 +489,9 @@ QUANTITY_WORDS = (
     "receptance", "amplitude", "damped_frequency", "damping_matrix", "damping_ratio",
     "equilibrium", "force_amplitude", "forcing_frequency", "free_response", "mass_matrix",
     "mode_shape", "natural_frequency", "phase", "spring_force", "stiffness_matrix",
-    "transmissibility", "expr")
+    "transmissibility", "expr",
+    # efficiency questions (docs/dynamics.md): words, a load's or a slider's name
+    "efficiency", "ideal_load", "reverse_load", "self_locking", "at")
 IGNORED = {"title", "source", "notes", "statement", "units", "k", "report", "keys", "quiz",
            "equilibrium"}
 

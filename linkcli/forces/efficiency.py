@@ -72,15 +72,21 @@ def reversed_state(solver, kin):
 
 
 def direct(mech, kin, unit, actual=None):
-    """eta = Q0 / Q, refused where Q does not drive (its power Q c q' <= 0)."""
+    """eta = Q0 / Q, refused where Q does not drive, with the losses or without them (its
+    power Q c q' <= 0 or Q0 c q' <= 0: the loads run the mechanism that way)."""
     q_loss = actual_load(mech, kin, unit) if actual is None else actual
-    power = q_loss * _lever(mech, kin, unit) * kin.qd
-    _require_positive(mech, kin, power, "no input",
-                      f"the unknown load {mech.unknown_load().name} does not drive the "
-                      "mechanism", "its power is {value:.6g} W",
-                      "an efficiency is output over input: make the unknown load the one "
-                      "that drives, or reverse the driver's rate")
-    return ideal_load(mech, kin, unit) / q_loss
+    name = mech.unknown_load().name
+    hint = "an efficiency is output over input: make the unknown load the one that drives, " \
+        "or ask for the reverse efficiency of the opposite motion"
+    _require_positive(mech, kin, q_loss * _lever(mech, kin, unit) * kin.qd, "no input",
+                      f"the unknown load {name} does not drive the mechanism",
+                      "its power is {value:.6g} W", hint)
+    q0 = ideal_load(mech, kin, unit)
+    _require_positive(mech, kin, q0 * _lever(mech, kin, unit) * kin.qd, "no ideal input",
+                      f"without friction the unknown load {name} would not drive the "
+                      "mechanism (the loads run it this way)", "its ideal power is "
+                      "{value:.6g} W", hint)
+    return q0 / q_loss
 
 
 def reverse_load(mech, solver, kin, unit, scale=1.0):

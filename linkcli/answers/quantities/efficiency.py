@@ -8,14 +8,24 @@ from __future__ import annotations
 import numpy as np
 
 from linkcli.answers.quantities.textbook import located
-from linkcli.errors import Caution, InputError
+from linkcli.errors import Caution, EfficiencyError, InputError
 from linkcli.forces import efficiency as eff
 from linkcli.forces.friction import coefficients, has_losses
 from linkcli.model.units import FORCE, TORQUE
 
 
 def efficiency_value(quantity, kin, context):
-    """(value, unit) of an efficiency question in its display unit."""
+    """(value, unit) of an efficiency question in its display unit; a refusal located at
+    the quantity's key and line."""
+    try:
+        return _value(quantity, kin, context)
+    except EfficiencyError as err:
+        if err.key is None:
+            err.key, err.line = f"quantities.{quantity.name}", quantity.line
+        raise
+
+
+def _value(quantity, kin, context):
     mech = context.mech
     kind, arg = quantity.kind, quantity.a
     if kind == "efficiency" and arg in ("series", "parallel"):

@@ -17,7 +17,8 @@ HEADINGS = {
            "points": "Coordinates of notable points", "driver": "Driver",
            "dynamics": "Dynamics (virtual work with inertia and gravity)",
            "dynamics_no_gravity": "Dynamics (virtual work with inertia)",
-           "vibration": "Vibrations (linearised about the static equilibrium)"},
+           "vibration": "Vibrations (linearised about the static equilibrium)",
+           "motion": "Machine dynamics (the motion under the given loads)"},
     "it": {"design": "Progetto (parametri ricavati)",
            "position": "Analisi Cinematica di POSIZIONE",
            "velocity": "Analisi Cinematica di VELOCITA'",
@@ -25,7 +26,8 @@ HEADINGS = {
            "statics": "Analisi STATICA",
            "points": "Coordinate di punti notevoli", "driver": "Movente",
            "dynamics": "Analisi DINAMICA", "dynamics_no_gravity": "Analisi DINAMICA",
-           "vibration": "Analisi delle VIBRAZIONI (linearizzata nell'equilibrio statico)"},
+           "vibration": "Analisi delle VIBRAZIONI (linearizzata nell'equilibrio statico)",
+           "motion": "DINAMICA della macchina (il moto sotto i carichi dati)"},
 }
 
 

@@ -22,12 +22,13 @@ from linkcli.errors import InputError
               help="Vibrations: free response from 'initial', linear and nonlinear (s).")
 @click.option("--vary", default=None, metavar="NAME=FROM:TO:STEPS",
               help="Answers against a parameter of 'params' (any file, vibrations too).")
+@click.option("--clutch", is_flag=True, help="A clutch problem: the two shafts' speeds in time.")
 @click.option("--y", "names", multiple=True, metavar="NAME",
               help="A quantity of the report (repeat for more panels), e.g. --y c --y cdot; "
                    "with --frf or --free, coordinates (default: every free one).")
 @K_OPTION
 @PICTURE_OPTION
-def plot(file, sweep, frf, modes, free, vary, names, k, output):
+def plot(file, sweep, frf, modes, free, vary, clutch, names, k, output):
     """Plot quantities of FILE against the driver, or a vibration problem's response.
 
     \b
@@ -36,14 +37,25 @@ def plot(file, sweep, frf, modes, free, vary, names, k, output):
       linkcli plot mechanisms/fourbar-inverse-dynamics.yaml --sweep 0:360:360 --y Mm -o mm.png
       linkcli plot mechanisms/polimi-2001-09-18-vibration.yaml --modes -o modes.png
       linkcli plot mechanisms/polimi-2001-09-18-vibration.yaml --vary ks=50:150:50 --y w1 -o w.png
+      linkcli plot mechanisms/khurmi-tom-clutch-engagement.yaml --clutch -o speeds.png
     """
     chosen = [flag for flag, value in (("--sweep", sweep), ("--frf", frf), ("--modes", modes),
-                                       ("--free", free), ("--vary", vary)) if value]
+                                       ("--free", free), ("--vary", vary),
+                                       ("--clutch", clutch)) if value]
     if len(chosen) != 1:
-        raise InputError("give one of --sweep, --frf, --modes, --free, --vary", key="plot",
-                         hint="--sweep FROM:TO:STEPS --y NAME for a mechanism with a driver")
+        raise InputError("give one of --sweep, --frf, --modes, --free, --vary, --clutch",
+                         key="plot", hint="--sweep FROM:TO:STEPS --y NAME for a mechanism "
+                         "with a driver")
     not_an_input(output, file)
-    mech = load(file, k, designed=not vary)     # a design question: solved at each value
+    mech = load(file, k, designed=not vary, clutch=True if clutch else "plot against a driver")
+    if clutch:
+        if mech.clutch is None:
+            raise InputError("--clutch draws a clutch problem's speeds (a file with shafts: "
+                             "and clutch:)", file=file, key="--clutch",
+                             hint="--sweep FROM:TO:STEPS --y NAME for a mechanism")
+        from linkcli.pictures.clutch import speeds
+        speeds(mech, output)
+        return
     if vary:
         from linkcli.pictures.plotting import plot_vary
         plot_vary(mech, vary, list(names), output)
@@ -87,10 +99,10 @@ def draw(file, k, output, exam, lang, method):
     if exam:
         from linkcli.pictures.exam import draw_exam
         # the problem as asked: a design question's unknowns are not drawn solved
-        draw_exam(load(file, k, designed=False), output, lang=lang, method=method)
+        draw_exam(load(file, k, designed=False, clutch="draw"), output, lang=lang, method=method)
         return
     from linkcli.pictures.plotting import draw as make
-    make(load(file, k), output, method=method)
+    make(load(file, k, clutch="draw"), output, method=method)
 
 
 @click.command()
@@ -110,4 +122,4 @@ def animate(file, sweep, fps, k, output):
     """
     from linkcli.pictures.plotting import animate as make
     not_an_input(output, file)
-    make(load(file, k), output, sweep, fps)
+    make(load(file, k, clutch="animate"), output, sweep, fps)

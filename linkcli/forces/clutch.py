@@ -37,18 +37,15 @@ import math
 from dataclasses import dataclass
 
 from linkcli.errors import ClutchError
+from linkcli.model.clutch import Plate
 
 
 def plate_torque(mu: float, force: float, outer: float, inner: float, pairs: int = 1,
                  wear: str = "uniform") -> float:
     """The friction torque (N m) of a plate clutch: ``pairs`` pairs of surfaces, radii
     ``outer`` > ``inner`` >= 0 (m), axial force ``force`` (N); ``wear`` 'uniform' (uniform
-    wear, the mean radius) or 'pressure' (uniform pressure)."""
-    if wear == "uniform":
-        radius = (outer + inner) / 2
-    else:
-        radius = 2 / 3 * (outer ** 3 - inner ** 3) / (outer ** 2 - inner ** 2)
-    return pairs * mu * force * radius
+    wear, the mean radius) or 'pressure' (uniform pressure) (``model.clutch.Plate``)."""
+    return Plate(mu, force, outer, inner, pairs, wear).torque
 
 
 @dataclass(frozen=True)

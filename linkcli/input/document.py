@@ -22,6 +22,7 @@ from linkcli.input.quantities import QuantitiesSection
 from linkcli.input.textbook import TextbookQuantities
 from linkcli.input.forces import ForceQuantities
 from linkcli.input.efficiency import EfficiencyQuantities
+from linkcli.input.clutch import ClutchSection, is_clutch
 from linkcli.input.limits import LimitsSection
 from linkcli.input.vibration import VibrationQuantities
 from linkcli.input.report import SECTIONS, ReportSection
@@ -40,7 +41,7 @@ from linkcli.input.reader import (NAME, UNKNOWN, InputErrors, Reader, _kind, _Sk
 TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points", "links",
             "actuators", "sliders", "driver", "coordinates", "loads", "quantities", "report",
             "keys", "dynamics", "springs", "dampers", "excitation", "initial", "equilibrium",
-            "rolling", "cords", "statement", "quiz", "find"}
+            "rolling", "cords", "statement", "quiz", "find", "shafts", "clutch"}
 VIBRATION_KEYS = ("springs", "dampers", "excitation", "initial", "equilibrium")
 
 __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS", "UNKNOWN",
@@ -49,7 +50,8 @@ __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS
 
 class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSection,
              TextbookQuantities, ForceQuantities, EfficiencyQuantities, LimitsSection, VibrationQuantities,
-             ReportSection, KeysSection, DerivedSection, OscillationSection, FindSection):
+             ReportSection, KeysSection, DerivedSection, OscillationSection, FindSection,
+             ClutchSection):
     """The whole document: units, params, frame and points, then each section."""
 
     def parse(self) -> Mechanism:
@@ -63,6 +65,8 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
                            hint="sections: " + ", ".join(sorted(TOP_KEYS)))
         units = self.block(self.units, data.get("units")) or Units()
         self.block(self.params, data)
+        if is_clutch(data):
+            return self.clutch_file(data, units)
         fixed = self.block(self.frame, data, units) or {}
         moving = self.block(self.moving, data, units, fixed) or {}
         pool = set(fixed) | set(moving)

@@ -147,6 +147,8 @@ class QuantitiesSection:
             return self.limit_quantity(name, value, path)
         if isinstance(value, dict) and EXPR in value:
             return self.expression_quantity(name, value, path)
+        if isinstance(value, dict) and "clutch" in value:
+            return self.clutch_quantity(name, value, path)
         if isinstance(value, dict) and any(k in value for k in EFFICIENCY):
             return self.efficiency_quantity(name, value, path, loads)
         value = self.mapping(value, path, set(GEOMETRY) | {"component", "unit", "point",

@@ -26,7 +26,7 @@ from linkcli.model.mechanism import VIBRATION, split_rate
 from linkcli.input.derived import EXPR
 from linkcli.input.quantities import EITHER, FORCES, LEVEL, RATES, SUFFIX, kind_text
 
-SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration", "points")
+SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration", "points", "motion")
 
 
 def split_base(name: str, order: int) -> str:
@@ -72,7 +72,7 @@ class ReportSection:
         if any(base in getattr(self, "failed", ()) for base in _bases(name)):
             return False            # its definition's error is reported already
         order = {"position": 0, "velocity": 1, "acceleration": 2, "statics": 0,
-                 "vibration": 0}[section]
+                 "vibration": 0, "motion": 0}[section]
         base = split_rate(name, quantities)
         if base[0] in quantities and quantities[base[0]].kind == "design":
             raise self.error(path, f"'{name}' is an unknown of 'find': it is listed in the "
@@ -80,6 +80,13 @@ class ReportSection:
         if base[0] in quantities and quantities[base[0]].kind == EXPR:
             self.rate_of(name, quantities[base[0]], base[1], path)
             return True             # an expression: in the section its reader expects
+        clutch = name in quantities and quantities[name].kind == "clutch"
+        if clutch or section == "motion":
+            if not clutch or section != "motion":
+                raise self.error(path, f"'{name}' is {'' if clutch else 'not '}an answer of a "
+                                 "clutch", hint="the 'motion' section lists the answers of the "
+                                 "motion in time, a clutch's among them")
+            return True
         vibration = name in quantities and quantities[name].kind in VIBRATION
         if section == "vibration" or vibration:
             if not vibration or section != "vibration":

@@ -63,6 +63,9 @@ def of_quantity(mech, quantity) -> Dimension:
         return DIMENSIONS[mech.load_unit_kind(mech.loads[quantity.a])]
     if kind in ("efficiency", "self_locking"):
         return NONE
+    if kind == "clutch":
+        from linkcli.model.clutch import ANSWERS
+        return ANSWERS[quantity.a]
     if kind == "velocity_ratio":
         return dimension(mech, quantity.a) / base_dimension(mech.driver.base)
     if kind in ("maximum", "minimum", "stroke"):

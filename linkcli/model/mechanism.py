@@ -245,7 +245,8 @@ LIMITS = ("maximum", "minimum", "at_maximum", "at_minimum", "stroke", "time_rati
           "stroke_time")
 
 #: the report's sections of named quantities, in the order of the answer sheet
-REPORT_SECTIONS = ("design", "position", "velocity", "acceleration", "statics", "vibration")
+REPORT_SECTIONS = ("design", "position", "velocity", "acceleration", "statics", "vibration",
+                   "motion")
 
 #: quantity kinds of the vibration analysis (each is also the YAML key that asks for it)
 VIBRATION = ("natural_frequency", "damped_frequency", "damping_ratio", "mode_shape",
@@ -333,6 +334,9 @@ class Mechanism:
     source: object = None
     #: a design question (``find:``, model.design.Design), None when absent
     design: object = None
+    #: a clutch problem's shafts and clutch (``shafts:``, model.clutch.ClutchProblem): then
+    #: there is no linkage, and no driver
+    clutch: object = None
 
     def __post_init__(self):
         if not self.coordinates:

@@ -150,6 +150,11 @@ def _locked_state(tr: Transient, t: float):
     return w, _locked_rate(tr, w, t)[0]
 
 
+def locked_torque(tr, w, t):
+    """C_t the clutch passes between the locked shafts at speed ``w`` and time ``t``."""
+    return _locked_rate(tr, w, t)[1]
+
+
 def _locked_rate(tr, w, t):
     """(w', C_t) of the locked shafts at speed ``w`` and time ``t``."""
     sh = tr.shafts

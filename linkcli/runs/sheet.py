@@ -45,6 +45,9 @@ def _kind(mech, name):
 
 def _evaluate(mech, q, qdot, qddot, names, method, tol) -> Result:
     """``names`` (none an expression) by the path they need."""
+    if mech.clutch is not None:     # shafts and a clutch: their transient
+        from linkcli.runs import clutch_sheet
+        return clutch_sheet.evaluate(mech, list(names), Result(mech))
     if mech.elements is None:       # a file with a driver: no vibration modules to import
         if _asks_limits(mech, names):   # maxima, strokes ...: runs.limits
             from linkcli.runs.limits import report as limit_report
@@ -58,6 +61,12 @@ def refuse_driving(mech, q=None, qdot=None, qddot=None, method="closed") -> None
     """A vibration problem (``elements``) is solved at its static equilibrium, by the closed
     form: driver values, rates or another method are refused by name (before a design
     question's trials are solved, and by the commands that draw or sweep one)."""
+    if mech.clutch is not None and (q is not None or qdot is not None or qddot is not None
+                                    or method != "closed"):
+        raise InputError("a clutch problem is solved in time from its shafts' speeds: it takes "
+                         "no driver values, rates or method", file=mech.file,
+                         key="--method" if method != "closed" else None,
+                         hint="drop q, qdot, qddot and --method")
     if mech.elements is None:
         return
     if q is not None or qdot is not None or qddot is not None or method != "closed":

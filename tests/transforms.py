@@ -366,6 +366,10 @@ class Sites:
     def _quantities(self, value, path):
         limit_kind = self.driver_base
         for name, spec in self.items(value, path):
+            if isinstance(spec, dict) and "clutch" in spec:     # docs/machines.md
+                self._only(spec, path + (name,), {"clutch": NAME, "shaft": NAME, "unit": NAME,
+                                                  "time": "time", "speed": "angular_rate"})
+                continue
             known = dict.fromkeys(QUANTITY_WORDS, NAME)
             known.update({"from": limit_kind, "to": limit_kind, "time": "time",
                           "axis": self._axis, "stages": self._pure, "powers": self._pure})
@@ -383,6 +387,22 @@ class Sites:
     def _axis(self, value, path):
         if isinstance(value, dict):
             self._only(value, path, {"angle": "angle"})
+
+    def _shafts(self, value, path):
+        """A clutch problem's shafts (docs/machines.md)."""
+        for name, spec in self.items(value, path):
+            self._only(spec, path + (name,), {
+                "inertia": "inertia", "speed": "angular_rate", "torque": "torque",
+                "resisting": "torque",
+                "motor": lambda v, p: self._only(v, p, {"stall": "torque",
+                                                        "no_load": "angular_rate"})})
+
+    def _clutch(self, value, path):
+        self._only(value, path, {
+            "between": NAME, "torque": "torque",
+            "plate": lambda v, p: self._only(v, p, {
+                "mu": None, "force": "force", "outer": "length", "inner": "length",
+                "pairs": NAME, "wear": NAME})})
 
     def _dynamics(self, value, path):
         self._only(value, path, {"gravity": self._gravity, "bodies": self._bodies,

@@ -72,6 +72,7 @@ class ClutchSection:
         quantities = self.block(self.quantities, data, set(), {}, None) or {}
         report = self.block(self.report, data, quantities, {}, set()) or {}
         keys = self.block(self.keys, data, quantities, {}, set(), report) or ()
+        self.large_enough(units)
         if self.errors:
             raise InputErrors(self.errors)
         mech = Mechanism(title=str(data.get("title", self.doc.name)), file=self.doc.name,

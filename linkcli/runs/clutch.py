@@ -80,6 +80,11 @@ def transient(shafts: physics.Shafts, torques: Torques, file=None) -> Transient:
     return _integrated(shafts, torques, file)
 
 
+def heat_rate(capacity, w1, w2):
+    """E' = C |w1 - w2|: the power the slipping clutch turns into heat (W)."""
+    return capacity * abs(w1 - w2)
+
+
 def _closing(shafts, torques, w1, w2, t, sense):
     """-s d(w1 - w2)/dt while slipping: > 0 where the relative speed closes."""
     a1 = (torques.m1(w1, t) - sense * shafts.capacity) / shafts.j1
@@ -100,7 +105,7 @@ def _integrated(shafts, torques, file):
 
     def rhs(t, y):
         _, b1, b2 = _closing(shafts, torques, y[0], y[1], t, sense)
-        return [b1, b2, shafts.capacity * abs(y[0] - y[1])]
+        return [b1, b2, heat_rate(shafts.capacity, y[0], y[1])]
 
     def engaged(t, y):
         return y[0] - y[1]

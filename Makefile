@@ -51,13 +51,15 @@ explore: $(VENV)/.installed-test
 
 ## bench: speed against hand-written NumPy and pylinkage, and of linkcli's compiled loop
 ## (numba and pylinkage installed if PyPI is reachable) at 360 ... 10^7 positions, with
-## accuracy and peak memory; where a call's time goes at 360; parameter sweeps and design
+## accuracy and peak memory; where a call's time goes at 360; the periodic regime found directly
+## against a hand-written solve_ivp of the transient; parameter sweeps and design
 ## questions (tables and charts in benchmarks/out/; a few minutes)
 bench: $(VENV)/.installed-test
 	$(BIN)/python -m pip install --quiet pylinkage numba || echo "peers not installed: timed without them"
 	$(BIN)/python benchmarks/speed.py
 	$(BIN)/python benchmarks/overhead.py
 	$(BIN)/python benchmarks/vibration.py
+	$(BIN)/python benchmarks/regime.py
 	$(BIN)/python benchmarks/questions.py
 	$(BIN)/python benchmarks/memory.py --quick
 

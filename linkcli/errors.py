@@ -244,3 +244,17 @@ class Caution:
     def __str__(self) -> str:
         label = "error" if self.kind == "unassembled" else "warning"
         return f"{self.file}: {label}: {self.detail}" if self.file else f"{label}: {self.detail}"
+
+
+class RegimeError(SolveError):
+    """A machine without the periodic regime (or the flywheel) asked: ``reason`` is
+    'unbalanced' (the mean torque over a cycle is not zero: it runs away or stops),
+    'stalls', 'runs away', 'stops', 'unstable' (the orbit repels), 'no convergence' (the
+    shooting), 'no inertia', 'no mean speed', 'overdetermined', or 'no flywheel' (a
+    coefficient of fluctuation no flywheel gives); ``values`` the numbers the message
+    names."""
+
+    def __init__(self, detail: str, *, reason: str, values=(), **kw):
+        super().__init__(detail, **kw)
+        self.reason = reason
+        self.values = tuple(values)

@@ -56,10 +56,10 @@ def _blocks(markdown: str) -> list:
 
 def noise(markdown: str) -> list:
     """(number, block's largest) for each nonzero number under NOISE of the largest
-    number of its block, lines stating a residual left out."""
+    number of its block, lines stating a residual ('residuo' in Italian) left out."""
     found = []
     for block in _blocks(markdown):
-        lines = [line for line in block if "residual" not in line]
+        lines = [line for line in block if "residual" not in line and "residuo" not in line]
         numbers = [float(x.replace(",", ".")) for line in lines for x in NUMBER.findall(line)]
         top = max((abs(x) for x in numbers), default=0.0)
         found += [(x, top) for x in numbers if x != 0 and abs(x) < NOISE * top]
@@ -149,8 +149,8 @@ def _html_rows(text) -> dict:
 
 
 def _newton_tables(tmp_path, capsys):
-    md = _export(TRIAD, tmp_path, "markdown")
-    page = _export(TRIAD, tmp_path, "html")
+    md = _export(TRIAD, tmp_path, "markdown", ("--lang", "en"))      # solve's language
+    page = _export(TRIAD, tmp_path, "html", ("--lang", "en"))
     return md, page, _solve_rows(capsys)
 
 

@@ -29,6 +29,7 @@ from linkcli.input.document import build
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import REPORT_SECTIONS
 from linkcli.model.rounding import noise_free
+from linkcli.texts.italian import italian
 
 WORDS = {
     "en": {"data": "Data", "structure": "Mobility and Assur decomposition",
@@ -104,6 +105,7 @@ def blocks(mech, lang="en", figure=True, method="closed") -> list:
     together (as ``explain --method newton``).  The results are those ``solve`` prints:
     a value that is the rounding noise of a zero is 0."""
     w = WORDS[lang]
+    say = _language(lang)
     result = without_noise(evaluate(mech, method=method))
     solution = design.solve(mech, evaluate, method) if design.unsolved(mech) else None
     solved = solution.mech if solution is not None else mech
@@ -112,15 +114,15 @@ def blocks(mech, lang="en", figure=True, method="closed") -> list:
         out += [Block("text", p.strip()) for p in mech.statement.split("\n\n") if p.strip()]
     out += [Block("heading", w["data"]), Block("lines", data_lines(mech, lang, solution))]
     out += [Block("heading", w["structure"]),
-            Block("lines", explain(mech, method).splitlines()[2:])]
+            Block("lines", [say(x) for x in explain(mech, method).splitlines()[2:]])]
     if mech.elements is None and method == "closed":
-        out += _kinematics(solved, w)
+        out += _kinematics(solved, w, say)
     out.append(Block("heading", w["results"]))
     decimals = mech.report.get("decimals", 1)
     for section in REPORT_SECTIONS:
         names = design.asked(mech, mech.report.get(section) or [])
         if names:
-            rows = [[n, fmt(np.ravel(result.values[n])[0], decimals), result.units[n]]
+            rows = [[n, say(fmt(np.ravel(result.values[n])[0], decimals)), result.units[n]]
                     for n in names]
             title = heading(mech, section, lang)
             out.append(Block("table", rows, [title, w["value"], w["unit"]]))
@@ -131,8 +133,15 @@ def blocks(mech, lang="en", figure=True, method="closed") -> list:
     return out
 
 
-def _kinematics(mech, w) -> list:
-    """Closure, velocity and acceleration systems of each group, and the statics."""
+def _language(lang):
+    """The function that writes a solving line (English, as the solvers make it) in
+    ``lang``: Italian words and decimal comma for 'it' (``texts.italian``)."""
+    return italian if lang == "it" else str
+
+
+def _kinematics(mech, w, say=str) -> list:
+    """Closure, velocity and acceleration systems of each group, and the statics, each line
+    written by ``say`` (``_language``)."""
     solver = solver_for(mech)
     d = mech.driver
     unit, f = mech.units.display("length", 0)
@@ -156,7 +165,7 @@ def _kinematics(mech, w) -> list:
             text = _constraint_text(c, mech, f, unit)
             if text:
                 lines.append(f"    {text}")
-    out = [Block("heading", w["positions"]), Block("lines", lines)]
+    out = [Block("heading", w["positions"]), Block("lines", [say(x) for x in lines])]
     for key, systems, suffix in (("velocities", vel_systems, "/s"),
                                  ("accelerations", acc_systems, "/s^2")):
         rows = []
@@ -169,9 +178,10 @@ def _kinematics(mech, w) -> list:
                         f"  ->  {point}{chr(39) * (1 if suffix == '/s' else 2)} = "
                         f"{_xy(value, f, top)} {unit}{suffix}")
         if rows:
-            out += [Block("heading", w[key]), Block("lines", [w["system"]] + rows)]
+            out += [Block("heading", w[key]), Block("lines", [w["system"]] +
+                                                    [say(x) for x in rows])]
     if mech.loads and mech.dynamics is None and any(ld.value is None for ld in mech.loads.values()):
-        out += _statics(mech, solver, kin, w)
+        out += _statics(mech, solver, kin, w, say)
     return out
 
 
@@ -206,7 +216,7 @@ def _shown(point: str) -> str:
     return point
 
 
-def _statics(mech, solver, kin, w):
+def _statics(mech, solver, kin, w, say=str):
     from linkcli.forces.statics import coefficient
     unit_kin = solver.velocities(kin.at_rest(), np.ones_like(kin.q))
     rows = []
@@ -214,7 +224,7 @@ def _statics(mech, solver, kin, w):
         c = float(np.ravel(coefficient(mech, load, kin.pos, unit_kin.vel))[0])
         kind = mech.load_unit_kind(load)
         value = "?" if load.value is None else f"{load.value / mech.units.factor(kind):.6g}"
-        rows.append([load.name, value, f"{c:.6g}"])
+        rows.append([load.name, say(value), say(f"{c:.6g}")])
     return [Block("heading", w["statics"]),
             Block("text", "sum_i L_i c_i = 0"),
             Block("table", rows, [w["load"], w["value"], w["coefficient"]])]
@@ -255,29 +265,48 @@ def formula_latex(entry, rank) -> str:
 
 
 def formula_mathml(entry, rank) -> str:
-    """An Entry as a display <math> element, its LaTeX kept as the annotation."""
+    """An Entry as MathML: a matrix equation or system as one display <math> element; a
+    scalar one as a run of inline <math> pieces, one per term of its sums, that the page
+    breaks between terms (``_pieces``).  The first element keeps the whole formula's
+    LaTeX as its annotation."""
     import sympy as sp
     from linkcli.texts import notation
-    if entry.reads == "equation":
-        left, right = (notation.mathml_body(x, rank) for x in entry.value)
-        return _math(f"{left}<mo>=</mo>{right}", formula_latex(entry, rank))
+    tex = formula_latex(entry, rank)
     if entry.reads == "system":
         A, u, b = (notation.mathml_matrix(x, rank) for x in entry.value)
         label = f"<mtext>{html.escape(entry.label)}</mtext><mspace width=\"1em\"/>"
-        return _math(f"{label}{A}{u}<mo>=</mo>{b}", formula_latex(entry, rank))
-    value = notation.mathml_matrix(entry.value, rank) if isinstance(entry.value, sp.MatrixBase) \
-        else notation.mathml_body(entry.value, rank, entry.terms)
+        return _pieces([f"{label}{A}{u}", f"<mo>=</mo>{b}"], tex)
+    if isinstance(entry.value, sp.MatrixBase):
+        label = notation.label_mathml(entry.label) if entry.label else ""
+        return _math(f"{label}<mo>=</mo>{notation.mathml_matrix(entry.value, rank)}", tex)
+    if entry.reads == "equation":
+        left, right = (notation.mathml_terms(x, rank) for x in entry.value)
+        return _pieces(left[:-1] + [left[-1] + "<mo>=</mo>" + right[0]] + right[1:], tex)
+    value = notation.mathml_terms(entry.value, rank, entry.terms)
     label = notation.label_mathml(entry.label) if entry.label else ""
-    body = {"is": f"{label}<mo>=</mo>{value}",
-            "zero": f"{label}<mspace width=\"1em\"/>{value}<mo>=</mo><mn>0</mn>" if label
-            else f"{value}<mo>=</mo><mn>0</mn>",
-            "positive": f"{value}<mo>&gt;</mo><mn>0</mn>"}[entry.reads]
-    return _math(body, formula_latex(entry, rank))
+    if entry.reads == "is":
+        return _pieces([f"{label}<mo>=</mo>{value[0]}"] + value[1:], tex)
+    end = "<mo>&gt;</mo><mn>0</mn>" if entry.reads == "positive" else "<mo>=</mo><mn>0</mn>"
+    head = [label + '<mspace width="1em"/>'] if label and entry.reads == "zero" else []
+    return _pieces(head + value[:-1] + [value[-1] + end], tex)
 
 
-def _math(body, tex) -> str:
-    """A display <math> element of ``body``, its LaTeX ``tex`` as the annotation."""
-    return ('<math xmlns="http://www.w3.org/1998/Math/MathML" display="block"><semantics>'
+def _pieces(pieces, tex) -> str:
+    """Inline <math> elements, one per piece, in a 'terms' paragraph: the browser breaks
+    the line between two pieces where the column ends (continuation lines indented), so
+    that a long equation and its '= 0' stay in the column; the first piece carries the
+    LaTeX ``tex`` of the whole."""
+    first = _math(pieces[0], tex, display=False)
+    rest = [f'<math xmlns="http://www.w3.org/1998/Math/MathML"><mrow>{p}</mrow></math>'
+            for p in pieces[1:]]
+    return '<span class="terms">' + " ".join([first] + rest) + "</span>"
+
+
+def _math(body, tex, display=True) -> str:
+    """A <math> element of ``body`` (display block, or inline), its LaTeX ``tex`` as the
+    annotation."""
+    mode = ' display="block"' if display else ""
+    return (f'<math xmlns="http://www.w3.org/1998/Math/MathML"{mode}><semantics>'
             f'<mrow>{body}</mrow><annotation encoding="application/x-tex">'
             f'{html.escape(tex)}</annotation></semantics></math>')
 
@@ -308,11 +337,13 @@ def to_html(items, lang="en") -> str:
             body.append(f'<div class="formula">{formula_mathml(*b.content)}</div>')
     title = esc(str(items[0].content)) if items else "linkcli"
     style = ("body{font-family:sans-serif;max-width:60em;margin:2em auto;padding:0 1em}"
-             "pre{background:#f6f6f6;padding:.6em;overflow-x:auto}"
+             "pre{background:#f6f6f6;padding:.6em;white-space:pre-wrap;"
+             "overflow-wrap:anywhere}"
              "table{border-collapse:collapse;margin:.5em 0}"
              "td,th{border:1px solid #bbb;padding:.2em .6em;text-align:left}"
              ".figure svg{max-width:100%;height:auto}"
-             ".formula{overflow-x:auto;margin:.4em 0}"
+             ".formula{margin:.4em 0}"
+             ".terms{display:block;padding-left:2em;text-indent:-2em;line-height:2}"
              'math{font-family:"Latin Modern Math","STIX Two Math","DejaVu Math TeX Gyre",math}'
              "mtable.matrix{border:solid currentColor;border-width:0 1.5px;padding:0 .3em;"
              "background:" + ",".join(f"linear-gradient(currentColor,currentColor) {x} {y}/.3em "

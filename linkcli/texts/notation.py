@@ -391,6 +391,23 @@ def mathml_body(expr, ranking: Ranking | None = None, terms=None) -> str:
     return MathMLWriter().write(layout(expr, ranking or Ranking(), terms))
 
 
+def mathml_terms(expr, ranking: Ranking | None = None, terms=None) -> list:
+    """``expr`` as MathML pieces (no <math> element), one per term of a sum, each with its
+    sign ('+' or '-' before every term but a positive first): a page sets each piece as
+    its own inline formula, so that a long sum breaks between terms as words do (MathML
+    Core has no line breaking); an expression that is not a sum is one piece."""
+    tree = layout(expr, ranking or Ranking(), terms)
+    if tree[0] != "sum":
+        return [MathMLWriter().write(tree)]
+    writer, out = MathMLWriter(), []
+    for i, (negative, term) in enumerate(tree[1]):
+        body = writer.paren(term, SUM + 1) if negative else writer.write(term)
+        form = ' form="infix"' if i else ""          # spaced as between two terms
+        sign = "&#x2212;" if negative else "+" if i else ""
+        out.append((f"<mo{form}>{sign}</mo>" if sign else "") + body)
+    return out
+
+
 def label_latex(label: str) -> str:
     """A formula's label in LaTeX: [M] -> [M], {F} -> \\{F\\}, N_k1 -> N_{k1}."""
     if label.startswith("{") and label.endswith("}"):

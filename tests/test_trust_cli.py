@@ -11,6 +11,7 @@ import pytest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cli_helpers import CODE, FOURBAR, run  # noqa: E402
+from linkcli.input.source import load_file  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DATA = os.path.join(ROOT, "tests", "data", "trust")   # repro files of this round
@@ -346,7 +347,9 @@ def test_rounding_noise_of_a_zero_is_printed_as_zero():
 
 
 # --- pictures -------------------------------------------------------------------------------
-SHIPPED = sorted(f for f in os.listdir(os.path.join(ROOT, "mechanisms")) if f.endswith(".yaml"))
+#: a clutch problem (shafts:, docs/machines.md) has no mechanism to draw: draw refuses it
+SHIPPED = sorted(f for f in os.listdir(os.path.join(ROOT, "mechanisms")) if f.endswith(".yaml")
+                 and "shafts" not in load_file(os.path.join(ROOT, "mechanisms", f)).data)
 
 
 def _body_points(ax):

@@ -164,7 +164,7 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
                              "parameter (--vary NAME=FROM:TO:STEPS)")
         from linkcli.runs import vary as vary_mod
         name, values = vary_mod.parse_vary(vary)
-        mech = load(file, k, designed=False, clutch="sweep")   # a design question: at each value
+        mech = load(file, k, designed=False, clutch=True)   # a design question: at each value
         check_every(every)
         variation = vary_mod.Variation(mech, name, values, chosen, method=method,
                                        tol=check_tol(tol))

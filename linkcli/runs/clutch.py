@@ -16,8 +16,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-import numpy as np
-
+from linkcli.errors import ClutchError
 from linkcli.forces import clutch as physics
 
 #: relative tolerance of the integration; the absolute one is this times the speeds' scale
@@ -41,18 +40,14 @@ class Torques:
 class Transient:
     """The clutch's transient: the slip's answers and the motion in time.
 
-    ``slip_time`` (s), ``speed`` the common speed (rad/s), ``energy`` dissipated (J);
-    ``times``, ``w1``, ``w2`` sampled through both phases for pictures; ``locked`` a
-    callable t -> (w, w') of the locked shafts (t >= slip_time), None for a brake."""
+    ``slip_time`` (s), ``speed`` the common speed (rad/s), ``energy`` dissipated (J); the
+    speeds at any time through both phases from :meth:`speeds_at`."""
 
     shafts: physics.Shafts
     torques: Torques
     slip_time: float
     speed: float
     energy: float
-    times: np.ndarray = field(default=None)
-    w1: np.ndarray = field(default=None)
-    w2: np.ndarray = field(default=None)
     file: str | None = None
     #: the slip's dense solution (integrated torques), the locked phase's once integrated
     _dense: object = field(default=None, repr=False)
@@ -236,7 +231,6 @@ def _root(f, lo, hi):
 
 
 def _not_reached(tr, speed, side):
-    from linkcli.errors import ClutchError
     return ClutchError(f"shaft {side} never reaches {speed:.6g} rad/s: it goes from "
                        f"{tr.shafts.w1 if side == 1 else tr.shafts.w2:.6g} rad/s to the common "
                        f"speed {tr.speed:.6g} rad/s and then "

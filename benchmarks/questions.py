@@ -7,6 +7,9 @@
   what the sweep costs without the all-at-once path (runs.coefficients).
 - Design questions of one unknown: the evaluations of the file the search takes (scan and
   Brent's method) and its time, for the files of docs/examples and mechanisms/ that ask one.
+- A parameter sweep of a linkage: `Linkage.vary("b", ...)` over the rod's length of
+  mechanisms/polimi-crank-slider.yaml (every value a file built and solved again), the time
+  a value with the straight-line solve (``kinematics.straight``) and without it, times 10^4.
 
     python benchmarks/questions.py
 
@@ -73,6 +76,30 @@ def sweep():
             "without_all_at_once_s": per_value * VALUES}
 
 
+LINKAGE = os.path.join(ROOT, "mechanisms", "polimi-crank-slider.yaml")
+
+
+def linkage_sweep(count=400):
+    """Seconds a value of ``vary`` over a length of a linkage file, by the default path and
+    with the straight-line solve switched off (each value is a new mechanism, solved once)."""
+    from linkcli.answers.quantities import plan
+    linkage = linkcli.load(LINKAGE)
+    values = np.linspace(1.3, 1.6, count)
+    linkage.vary("b", values[:10])
+    out = {}
+    for label, off in (("default", False), ("general path only", True)):
+        real = plan.straight_of
+        if off:
+            plan.straight_of = lambda *args: None
+        try:
+            start = time.perf_counter()
+            linkage.vary("b", values)
+            out[label] = (time.perf_counter() - start) / count
+        finally:
+            plan.straight_of = real
+    return out
+
+
 def finds():
     out = []
     paths = sorted(glob.glob(os.path.join(ROOT, "mechanisms", "*.yaml")) +
@@ -95,7 +122,7 @@ def finds():
 
 def main():
     os.makedirs(OUT, exist_ok=True)
-    data = {"sweep": sweep(), "find": finds()}
+    data = {"sweep": sweep(), "find": finds(), "linkage_sweep": linkage_sweep()}
     s = data["sweep"]
     lines = [f"sweep --vary ks over {s['values']} values of a 2-coordinate file "
              f"({s['answers']} answers, {s['solved']} values solved):",
@@ -113,6 +140,11 @@ def main():
     counts = [f["evaluations"] for f in data["find"] if "evaluations" in f]
     if counts:
         lines.append(f"  median {int(np.median(counts))}, largest {max(counts)} evaluations")
+    lines += ["", "vary over the rod's length of mechanisms/polimi-crank-slider.yaml (each value "
+              "a file built and solved again):"]
+    for label, seconds in data["linkage_sweep"].items():
+        lines.append(f"  {label}: {seconds * 1e3:.2f} ms a value, {seconds * 1e4:.1f} s for "
+                     "10^4 values")
     text = "\n".join(lines)
     print(text)
     with open(os.path.join(OUT, "questions.txt"), "w", encoding="utf-8") as handle:

@@ -56,7 +56,10 @@ from linkcli.kinematics import compiled  # noqa: E402
 from speed_accuracy import CRANK_SLIDER, FOURBAR, SIXBAR, hand_fourbar  # noqa: E402
 
 OUT = os.path.join(HERE, "out")
-SIZES = (360, COMPILED_MOST, 10 ** 4, 10 ** 6, 10 ** 7)
+from linkcli.answers.quantities.plan import WORKERS as DEFAULT_WORKERS  # noqa: E402
+SIZES = (1, 10, 100, 360, COMPILED_MOST, 10 ** 4, 10 ** 5, 10 ** 6, 10 ** 7)
+#: from this many positions on, linkcli is also timed on one thread (blocks not in parallel)
+THREADED = 10 ** 5
 BLOCK = 16384           # positions per block at 10^7 (runs.sweep.blocks.BLOCK)
 ACCURACY_N = 10 ** 4
 PEERS = ("pylinkage",)
@@ -198,6 +201,11 @@ class Case:
         compiled.switch(jit)
         return self.linkage.solve(q, names=self.names).values
 
+    def evaluator(self):
+        """``Linkage.evaluator`` of the names: made once, called at each position set."""
+        compiled.switch(False)
+        return self.linkage.evaluator(self.names)
+
     def by_hand(self, q):
         return self.hand(q, self.qd, self.qdd)
 
@@ -243,6 +251,13 @@ def in_blocks(func, c, n):
     return time.perf_counter() - start
 
 
+def one_thread(on: bool = True) -> None:
+    """linkcli's blocks of a long array solved one after the other (``on``), or on its
+    default threads."""
+    from linkcli.answers.quantities import plan
+    plan.WORKERS = 1 if on else DEFAULT_WORKERS
+
+
 def high_water() -> float:
     """Peak resident memory of this process (MB)."""
     with open("/proc/self/status", encoding="ascii") as handle:
@@ -254,8 +269,12 @@ def high_water() -> float:
 
 
 def child(key, method, n):
-    """Run in a fresh process: one blocked solve of ``n`` positions, its time and peak RSS."""
+    """Run in a fresh process: one blocked solve of ``n`` positions, its time and peak RSS
+    (``method`` linkcli1: linkcli on one thread)."""
     from linkcli.answers.memory import keep_freed_memory
+    if method == "linkcli1":
+        one_thread()
+        method = "linkcli"
     c = case(key)
     keep_freed_memory()                     # both with the malloc settings linkcli's solves
     func = c.solve if method == "linkcli" else c.by_hand    # of blocks take
@@ -369,9 +388,14 @@ def main(argv=None):
             row = {"mechanism": key, "N": n, "closure": closure, "fd": fd_mine,
                    "fd_hand": fd_hand, "agree": agree}
             if n <= 10 ** 6:
-                q = c.grid(n)
-                budget = 2.0 if n < 10 ** 6 else 1.0
-                funcs = {"linkcli": lambda: c.solve(q, jit=False), "hand": lambda: c.by_hand(q)}
+                q = c.grid(n) if n > 1 else float(c.grid(1)[0])     # one position: a number
+                budget = 0.5 if n < 360 else 2.0 if n < 10 ** 6 else 1.0
+                ev = c.evaluator()
+                funcs = {"linkcli": lambda: c.solve(q, jit=False), "evaluator": lambda: ev(q),
+                         "hand": lambda: c.by_hand(q)}
+                if n >= THREADED:
+                    funcs["linkcli_1"] = lambda: (one_thread(), c.solve(q, jit=False),
+                                                  one_thread(False))
                 if jit and n <= COMPILED_MOST:
                     funcs["compiled"] = lambda: c.solve(q, jit=True)
                 if peer is not None:
@@ -379,17 +403,22 @@ def main(argv=None):
                 times = median_times(list(funcs.values()), budget, args.repeat)
                 row.update({k: t / n for k, t in zip(funcs, times)})
             else:
-                for method in ("linkcli", "hand"):
+                for method in ("linkcli", "linkcli1", "hand"):
                     run = subprocess.run([sys.executable, os.path.abspath(__file__), "--child",
                                           key, method, str(n)], capture_output=True, text=True,
                                          check=True)
                     got = json.loads(run.stdout.strip().splitlines()[-1])
-                    row[method] = got["seconds"] / n
-                    row[method + "_rss"] = got["rss_MB"]
+                    name = "linkcli_1" if method == "linkcli1" else method
+                    row[name] = got["seconds"] / n
+                    row[name + "_rss"] = got["rss_MB"]
             rows.append(row)
             other = f"  pylinkage {row['pylinkage'] * 1e9:8.1f} ns/pos" if "pylinkage" in row \
                 else ""
             other += f"  compiled {row['compiled'] * 1e9:8.1f} ns/pos" if "compiled" in row \
+                else ""
+            other += f"  evaluator {row['evaluator'] * 1e9:8.1f} ns/pos" if "evaluator" in row \
+                else ""
+            other += f"  one thread {row['linkcli_1'] / row['hand']:.2f}x" if "linkcli_1" in row \
                 else ""
             print(f"  N={n:<9d} linkcli {row['linkcli'] * 1e9:8.1f} ns/pos  hand "
                   f"{row['hand'] * 1e9:8.1f} ns/pos  ratio {row['linkcli'] / row['hand']:.2f}"
@@ -426,28 +455,36 @@ def table(rows, peers) -> str:
     lines = ["# linkcli against hand-written NumPy", "",
              f"{time.strftime('%Y-%m-%d')}, {machine()}.", "",
              "Time per position of positions, velocities and accelerations of every reported "
-             "quantity (N = 360: per call); 10^7 in blocks of 16384 in a fresh process "
-             "(peak RSS of that process). Accuracy on 10^4 positions: closure residual "
-             "(relative to size^2), rates against five-point finite differences (relative; the "
-             "differences are good to ~1e-8), linkcli against hand-written.", "",
-             "| mechanism | N | linkcli | hand-written | ratio | linkcli compiled (ratio) "
-             "| pylinkage (numba) | peak RSS linkcli / hand | closure | rates vs FD (hand) "
-             "| linkcli - hand |",
-             "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
+             "quantity (N <= 360: per call); 10^7 in blocks of 16384 in a fresh process "
+             "(peak RSS of that process). linkcli: `Linkage.solve(q, names=...)`; "
+             "evaluator: `Linkage.evaluator(names)` made once, then called; one thread: "
+             "linkcli with its blocks solved one after the other (from 10^5 on). Accuracy "
+             "on 10^4 positions: closure residual (relative to size^2), rates against "
+             "five-point finite differences (relative; the differences are good to ~1e-8), "
+             "linkcli against hand-written.", "",
+             "| mechanism | N | linkcli | evaluator | hand-written | ratio | evaluator ratio "
+             "| one thread ratio | linkcli compiled (ratio) | pylinkage (numba) "
+             "| peak RSS linkcli / hand | closure | rates vs FD (hand) | linkcli - hand |",
+             "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: "
+             "| ---: | ---: | ---: |"]
 
     def shown(seconds, n):
-        return f"{seconds * n * 1e3:.3f} ms" if n == 360 else f"{seconds * 1e9:.0f} ns"
+        return f"{seconds * n * 1e6:.1f} us" if n < 360 else \
+            f"{seconds * n * 1e3:.3f} ms" if n == 360 else f"{seconds * 1e9:.0f} ns"
     for r in rows:
         n = r["N"]
         mine, hand = shown(r["linkcli"], n), shown(r["hand"], n)
+        ev = shown(r["evaluator"], n) if "evaluator" in r else ""
+        ev_ratio = f"{r['evaluator'] / r['hand']:.2f}x" if "evaluator" in r else ""
+        one = f"{r['linkcli_1'] / r['hand']:.2f}x" if "linkcli_1" in r else ""
         peer = shown(r["pylinkage"], n) if "pylinkage" in r else ""
         jit = f"{shown(r['compiled'], n)} ({r['compiled'] / r['hand']:.2f}x)" \
             if "compiled" in r else ""
         rss = f"{r['linkcli_rss']:.0f} / {r['hand_rss']:.0f} MB" if "linkcli_rss" in r else ""
         size = str(n) if n < 10 ** 4 else f"10^{round(math.log10(n))}"
-        lines.append(f"| {r['mechanism']} | {size} | {mine} | {hand} | "
-                     f"{r['linkcli'] / r['hand']:.2f}x | {jit} | {peer} | {rss} | "
-                     f"{r['closure']:.1e} | "
+        lines.append(f"| {r['mechanism']} | {size} | {mine} | {ev} | {hand} | "
+                     f"{r['linkcli'] / r['hand']:.2f}x | {ev_ratio} | {one} | {jit} | {peer} | "
+                     f"{rss} | {r['closure']:.1e} | "
                      f"{r['fd']:.1e} ({r['fd_hand']:.1e}) | {r['agree']:.1e} |")
     lines += ["", "Peers: " + "; ".join(peers) + ".", "",
               f"linkcli compiled: the same call with the compiled loop switched on "
@@ -456,44 +493,44 @@ def table(rows, peers) -> str:
     return "\n".join(lines)
 
 
+#: the paths of the chart: (row key, label, line style)
+PATHS = (("linkcli", "linkcli solve", "-o"), ("linkcli_1", "linkcli solve, one thread", "-x"),
+         ("evaluator", "linkcli evaluator", "-v"), ("hand", "hand-written", "--s"),
+         ("compiled", "linkcli compiled", "-.d"), ("pylinkage", "pylinkage (numba)", ":^"))
+
+
 def chart(rows) -> str:
+    """Time per call against N (1 to 10^7) for each path, and each path over hand-written."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, (ax, ratio) = plt.subplots(1, 2, figsize=(12, 4.5))
-    for i, key in enumerate(CASES):
-        mine = [(r["N"], r["linkcli"] * 1e9, r["hand"] * 1e9) for r in rows
-                if r["mechanism"] == key]
-        if not mine:
-            continue
-        n, a, b = zip(*mine)
-        ax.loglog(n, a, "-o", color=f"C{i}", label=f"{key}, linkcli")
-        ax.loglog(n, b, "--s", color=f"C{i}", label=f"{key}, hand-written")
-        peer = [(r["N"], r["pylinkage"] * 1e9) for r in rows
-                if r["mechanism"] == key and "pylinkage" in r]
-        if peer:
-            ax.loglog(*zip(*peer), ":^", color=f"C{i}", label=f"{key}, pylinkage (numba)")
-        ratio.semilogx(n, np.array(a) / np.array(b), "-o", color=f"C{i}", label=key)
-        jit = [(r["N"], r["compiled"] * 1e9, r["compiled"] / r["hand"]) for r in rows
-               if r["mechanism"] == key and "compiled" in r]
-        if jit:
-            ax.loglog([j[0] for j in jit], [j[1] for j in jit], "-.d", color=f"C{i}",
-                      label=f"{key}, linkcli compiled")
-            ratio.semilogx([j[0] for j in jit], [j[2] for j in jit], "-.d", color=f"C{i}",
-                           label=f"{key}, compiled")
-    ax.set_xlabel("positions N")
-    ax.set_ylabel("time per position [ns]")
-    ax.set_title("positions, velocities, accelerations")
-    ratio.set_xlabel("positions N")
-    ratio.set_ylabel("linkcli / hand-written")
-    ratio.set_ylim(bottom=0)
-    ratio.set_title("ratio")
-    for a in (ax, ratio):
-        a.grid(True, which="both", alpha=0.3)
-        a.legend(fontsize=8)
+    keys = [k for k in CASES if any(r["mechanism"] == k for r in rows)]
+    fig, axes = plt.subplots(2, len(keys), figsize=(5.5 * len(keys), 8.5), squeeze=False)
+    for j, key in enumerate(keys):
+        ax, ratio = axes[0, j], axes[1, j]
+        mine = [r for r in rows if r["mechanism"] == key]
+        for i, (path, label, style) in enumerate(PATHS):
+            got = [(r["N"], r[path] * r["N"] * 1e6, r[path] / r["hand"]) for r in mine
+                   if path in r]
+            if not got:
+                continue
+            n, per_call, over = zip(*got)
+            ax.loglog(n, per_call, style, color=f"C{i}", label=label)
+            if path != "hand":
+                ratio.semilogx(n, over, style, color=f"C{i}", label=label)
+        ax.set_title(f"{key}: positions, velocities, accelerations")
+        ax.set_xlabel("positions N")
+        ax.set_ylabel("time per call [us]")
+        ratio.axhline(1.0, color="grey", lw=0.8)
+        ratio.set_xlabel("positions N")
+        ratio.set_ylabel("time over hand-written")
+        ratio.set_ylim(bottom=0)
+        for a in (ax, ratio):
+            a.grid(True, which="both", alpha=0.3)
+            a.legend(fontsize=7)
     fig.tight_layout()
     path = os.path.join(OUT, "speed.png")
-    fig.savefig(path, dpi=100)
+    fig.savefig(path, dpi=90)
     plt.close(fig)
     return path
 

@@ -67,6 +67,16 @@ class Linkage:
         """
         return sweep(self.model, q, sweep_names(self.model, names), method, tol, qdot, qddot)
 
+    def evaluator(self, names=None, *, method="closed", tol=None):
+        """The answers ``names`` (default: the report's) as a function of the driver, made
+        once for calls at many positions: ``ev = linkage.evaluator(); ev(q, qdot, qddot)``
+        gives a tuple of numbers for one driver value, an array (names x positions) for a
+        1-D array, in display units and in the order of ``ev.names``; a few microseconds a
+        position, where :meth:`solve` costs tens.  The same values (within rounding) and
+        the same refusals as :meth:`solve`: see :mod:`linkcli.runs.evaluator`."""
+        from linkcli.runs.evaluator import Evaluator
+        return Evaluator(self.model, names, method, tol)
+
     def with_params(self, **params) -> "Linkage":
         """The same file with some of its ``params`` given other values (numbers as the file
         writes them): ``linkage.with_params(ks=200).solve()``."""

@@ -258,6 +258,10 @@ class Similarity:
             roles[key] = None if rate is None else (lambda v, p: rate(v))
         return self._keys(spec, path, roles)
 
+    def sec_drivers(self, value, path):
+        """Each named driver as ``driver:`` (several inputs, each driven)."""
+        return {name: self.sec_driver(spec, path + (name,)) for name, spec in value.items()}
+
     def sec_coordinates(self, value, path):
         for name, spec in value.items():
             kind = next(iter(spec))
@@ -367,13 +371,24 @@ class Similarity:
 
     def contact(self, spec, path):
         return self._keys(spec, path, {"disc": None, "radius": lambda v, p: self.length(v),
-                                       "on": self.rolls_on})
+                                       "on": self.rolls_on, "gear": None})
 
     def rolls_on(self, spec, path):
         def line(v, p):
             return v if isinstance(v, list) else self.axis(v, p)
         return self._keys(spec, path, {"line": line, "side": None, "body": None,
-                                       "circle": None, "radius": lambda v, p: self.length(v)})
+                                       "circle": None, "radius": lambda v, p: self.length(v),
+                                       "disc": None, "inside": None, "gear": None})
+
+    def sec_gears(self, value, path):
+        """A gear's module and addendum are lengths, its diametral pitch (teeth per unit
+        of diameter) a length to the power -1; teeth and the pressure angle (between the
+        line of action and the pitch circles' tangent, no direction) are kept."""
+        return self._each(value, path, lambda spec, p: self._keys(spec, p, {
+            "teeth": None, "module": lambda v, q: self.length(v),
+            "addendum": lambda v, q: self.length(v),
+            "diametral_pitch": lambda v, q: self.length(v, -1),
+            "pressure_angle": None, "internal": None}))
 
     def sec_cords(self, value, path):
         return self._each(value, path, self.cord)
@@ -506,7 +521,8 @@ INVARIANT = {
     "natural_frequency", "natural_period", "damping_ratio", "damped_frequency",
     "mass_matrix", "stiffness_matrix", "damping_matrix", "mode_shape", "phase",
     "forcing_frequency", "frequency_ratio", "beat_period", "eigenvalue", "transmissibility",
-    "characteristic", "receptance", "peak_frequency", "period"}
+    "characteristic", "receptance", "peak_frequency", "period",
+    "centre_distance", "contact_ratio", "min_teeth"}
 RATE = re.compile(r"^(.*?)(ddot|dot)$")
 POINT = re.compile(r"^([xy])(.+)$")
 
@@ -538,6 +554,12 @@ def frame_class(doc, name, seen=()):
             return ("component", m.group(1), m.group(2))
         if base == "q":
             return "driver"
+        driver = (doc.get("drivers") or {}).get(base)
+        if isinstance(driver, dict):        # a driver's own coordinate, by its name
+            kind = next(k for k in ("angle", "length", "x", "y") if k in driver)
+            if kind in ("x", "y"):
+                return ("component", kind, driver[kind])
+            return "angle" if kind == "angle" and not order else "invariant"
         loads = doc.get("loads") or {}
         if base in loads and loads[base].get("type") in ("driver", "torque", "axial"):
             return "invariant"

@@ -72,8 +72,9 @@ def boxes(question) -> list:
 
 def names(mech) -> list:
     """The names of the boxes: the report's, a design question's targets left out (they are
-    data)."""
-    return asked(mech, [n for s in REPORT_SECTIONS for n in mech.report.get(s) or []])
+    data), and the names the file's quiz.not_asked lists (its statement does not ask them)."""
+    return [n for n in asked(mech, [n for s in REPORT_SECTIONS for n in mech.report.get(s) or []])
+            if n not in mech.quiz.not_asked]
 
 
 class Parts(HTMLParser):

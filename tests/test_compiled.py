@@ -27,6 +27,13 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PROBED = ("angle", "length", "x", "y")
 
 
+@pytest.fixture(autouse=True)
+def no_straight(monkeypatch):
+    """The general NumPy path, not the straight-line one (tests/test_straight.py), is what
+    the loop is compared with and falls back to."""
+    monkeypatch.setattr(quantities, "straight_of", lambda *args: None)
+
+
 @pytest.fixture
 def loop(monkeypatch):
     """Evaluations run the compiled loop as Python."""

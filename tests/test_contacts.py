@@ -546,8 +546,9 @@ loads: {T: {type: driver, value: unknown}, W: {type: torque, on: rocker, value: 
 WITH_MASSES = pytest.mark.parametrize("text, method", [
     (open(Q6).read(), "closed"), (open(CAGE).read(), "closed"), (RACK, "closed"),
     (TACKLE_MASSES, "closed"), (SECTOR_MASSES, "closed"), (DIFFERENTIAL_MASSES, "closed"),
-    (PLANETARY, "newton")],
-    ids=["atwood", "hoist", "rack", "tackle", "sector", "differential", "planetary"])
+    (PLANETARY, "newton"), (PLANETARY, "closed")],
+    ids=["atwood", "hoist", "rack", "tackle", "sector", "differential", "planetary",
+         "planetary-closed"])
 
 
 @WITH_MASSES
@@ -770,15 +771,25 @@ def test_validate_finds_what_solve_refuses(tmp_path, capsys):
     assert main(["solve", str(path)]) == 3
 
 
-def test_validate_names_the_method_a_planetary_gear_needs(tmp_path, capsys):
-    """The planet carries its arm between the driven sun and the fixed ring: no dyad turns
-    the arm, so the closed form refuses (exit 3) and validate says that Newton solves it;
-    Newton then does."""
+def test_closed_form_turns_the_arm_a_planet_carries(tmp_path, capsys):
+    """The planet carries its arm between the driven sun and the fixed ring: the two
+    contacts without the planet's turn give the arm's (a roll group of both), then one of
+    them turns the planet; validate and solve need no other method, and the closed form's
+    rates are Newton's over positions a turn apart (Willis: w_arm = w_sun Rs / (Rs + Rr)
+    = 90/3 = 30 deg/s, w_planet = -90 deg/s)."""
     from linkcli.cli import main
     path = tmp_path / "planetary.yaml"
     path.write_text(PLANETARY)
     assert main(["validate", str(path)]) == 0
-    assert "--method newton" in capsys.readouterr().out
-    assert main(["solve", str(path)]) == 3
-    assert "--method newton" in capsys.readouterr().err
-    assert main(["solve", str(path), "--method", "newton"]) == 0
+    assert "--method newton" not in capsys.readouterr().out
+    assert main(["solve", str(path)]) == 0
+    mech = linkcli.loads(PLANETARY)
+    q = np.array([-60.0, 0.0, 75.0, 170.0, 400.0])
+    names = ["wc", "wp", "wcdot", "wpdot", "wcddot", "wpddot"]
+    closed = mech.solve(q=q, qdot=np.full(5, 90.0), qddot=np.full(5, 30.0), names=names).values
+    newton = mech.solve(q=q, qdot=np.full(5, 90.0), qddot=np.full(5, 30.0), names=names,
+                        method="newton").values
+    assert np.asarray(closed["wcdot"]) == pytest.approx(np.full(5, 30.0), rel=1e-10)
+    assert np.asarray(closed["wpdot"]) == pytest.approx(np.full(5, -90.0), rel=1e-10)
+    for name in names:
+        assert np.asarray(closed[name]) == pytest.approx(np.asarray(newton[name]), abs=1e-8)

@@ -485,3 +485,20 @@ def test_beyond_range_catches_lengths_let_through(tmp_path, monkeypatch):
     report = Report()
     beyond_range_case(shipped("bevan-3-4a-slider-crank-accelerations"), tmp_path, report)
     assert any("s=1e+200" in f for f in report.failures), report.failures
+
+
+def test_scale_catches_an_addendum_of_fixed_length(tmp_path, monkeypatch):
+    """An addendum taken as 1 mm whatever the gears' size (not one module): the contact
+    ratio of the scaled file changes, which the scale check reports."""
+    import dataclasses
+    from linkcli.kinematics import gearing
+    original = gearing.contact_ratio
+
+    def planted(pinion, wheel):
+        return original(*(dataclasses.replace(g, addendum=0.001) for g in (pinion, wheel)))
+    report = Report()
+    scale_case(shipped("shigley-13-1-diametral-pitch"), (3.0,), tmp_path, report)
+    assert not report.failures
+    monkeypatch.setattr(gearing, "contact_ratio", planted)
+    scale_case(shipped("shigley-13-1-diametral-pitch"), (3.0,), tmp_path, report)
+    assert any("eps" in f for f in report.failures), report.failures

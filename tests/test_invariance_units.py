@@ -198,6 +198,17 @@ def test_a_wrong_factor_is_caught(monkeypatch, what, table, unit, value, path, s
     assert found, f"planted '{what}' not caught"
 
 
+def test_a_diametral_pitch_read_per_metre_is_caught(monkeypatch):
+    """A diametral pitch read per metre whatever the file's length unit (P teeth per inch
+    taken as P per metre): the file rewritten in millimetres gives other radii, so another
+    contact ratio and centre distance."""
+    from linkcli.input import gears
+    found = caught(lambda: check("mechanisms/shigley-13-1-diametral-pitch.yaml", SYSTEMS["si"]),
+                   lambda: monkeypatch.setattr(gears, "module_of_pitch",
+                                               lambda pitch, unit_length: 1.0 / pitch))
+    assert found, "planted 'diametral pitch per metre' not caught"
+
+
 def caught(compare, plant) -> list:
     """What ``compare()`` finds once ``plant()`` has put a defect in (the files' own answers
     solved again with it), having found nothing before."""

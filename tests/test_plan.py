@@ -1,6 +1,10 @@
 """The evaluation plan (answers.quantities.Plan) gives the values of evaluating every name
 on its own, on every shipped mechanism with a driver, at the file's position and at random
-driver values; it is built once per (mechanism, names, method) and reused."""
+driver values; it is built once per (mechanism, names, method) and reused.
+
+These are the plan's general path (its kernels on the solver's kinematics), bit for bit;
+the straight-line path it takes first where it can (``kinematics.straight``) is held to
+this one within rounding by tests/test_straight.py, and is switched off here."""
 from __future__ import annotations
 
 import glob
@@ -19,6 +23,14 @@ from linkcli.model.mechanism import split_rate
 from linkcli.input.source import load_file
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+@pytest.fixture(autouse=True)
+def general_path(monkeypatch):
+    """The plan's general path: no straight-line solve (tests/test_straight.py)."""
+    monkeypatch.setattr(quantities, "straight_of", lambda *args: None)
+
+
 #: a clutch problem (shafts:, docs/machines.md) has no driver values to plan
 SHIPPED = sorted(p for p in glob.glob(os.path.join(ROOT, "mechanisms", "*.yaml"))
                  if "shafts" not in load_file(p).data)

@@ -130,10 +130,12 @@ def check_linkage(mech, loop):
     if mech.driver is None or mech.elements is not None:
         return 0
     solver = solver_for(mech)
-    d = mech.driver
-    kin = solver.positions(d.value)
-    solver.velocities(kin, d.rate)
-    solver.accelerations(kin, d.accel)
+    drivers = mech.coordinates                  # one driver, or several each driven
+    value, rate, accel = ((tuple(getattr(c, a) for c in drivers) if len(drivers) > 1
+                           else getattr(drivers[0], a)) for a in ("value", "rate", "accel"))
+    kin = solver.positions(value)
+    solver.velocities(kin, rate)
+    solver.accelerations(kin, accel)
     values = dict(loop.numbers)
     values.update({k: float(v) for k, v in loop.values.items()})
     for symbol, meaning in loop.meaning.items():

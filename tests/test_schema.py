@@ -112,14 +112,20 @@ def test_number_rule_is_the_evaluators_range(value, ok):
 # --- which loader errors the schema cannot express -----------------------------------------
 _SHAPE_POINT_KEYS = {"angle", "from", "distances", "side"}
 _ALWAYS_LOADER = [           # messages of rules that need the rest of the file
-    r"^undefined (point|link|actuator|load|coordinate|spring|damper|spring or damper|body) ",
+    r"^undefined (point|link|actuator|load|coordinate|spring|damper|spring or damper|body|gear|fixed point) ",
+    r"do not mesh: ", r"is not the pitch radius of gear", r"are both internal: a ring",
+    r"is of gears: give their teeth", r"^a pressure angle lies between",
     r"^a mode is numbered",
     r"a quantity of the vibration analysis",
     r"needs a vibration problem",
     r"belongs to a vibration problem",
     r"^a 'driver' load needs a driver",
     r"^a vibration problem has no unknown load",
-    r"^a file has either a driver",
+    r"^a file has one of 'driver'",
+    r"^the driver load acts on the driver coordinate",   # 'on' names a driver of 'drivers:'
+    r"^one load per driver must be unknown",
+    r"already fixes: one coordinate takes one driver",
+    r"^the driver's name .* is taken by",
     r"^a harmonic excitation needs its frequency",
     r"^the cord is not (taut|tangent) in the figure",
     r"^in the figure the centres are",
@@ -218,6 +224,9 @@ def loader_only(error: InputError, data) -> bool:
     # a load quantity's unit depends on the kind of load (force or torque)
     if re.match(r"^unknown unit '(N|kN|lbf|lb|kip|Nm|Nmm|kNm|lbf ft|lbf in|kip ft)' for a load "
                 r"quantity", detail):
+        return True
+    # a disc's radius may be left out where 'gears:' gives its teeth
+    if detail == "missing key 'radius'" and parts[0] == "rolling":
         return True
     # a whole number written with a decimal point (5.0): JSON Schema calls it an integer
     if re.search(r"(digit 0-9|whole number 0-12), got -?\d+\.0$", detail):

@@ -174,13 +174,34 @@ def test_explain_with_newton_refuses_a_vibration_problem():
 
 # --- a mechanism with two inputs ----------------------------------------------------------------
 def test_two_inputs_named_with_what_works():
-    """Two degrees of freedom and one driver (x of B): the message says so, says that one
-    driver is supported, and no longer sends the file to 'coordinates:'."""
+    """Two degrees of freedom and one driver (x of B): the message says so and sends the
+    file to 'drivers:', one per input, not to 'coordinates:'."""
     code, _, err = run(["solve", data("two_inputs_pinion_between_racks.yaml")])
     assert code == 3
     assert "2 degrees of freedom, not 1 (the one driver, x of B)" in err
-    assert "one driver is supported, not several" in err
+    assert "declare one driver per input under 'drivers:'" in err
     assert "under 'coordinates:'" not in err
+
+
+def test_following_the_drivers_hint_gives_the_books_answer(tmp_path):
+    """The hint followed: B at 8 ft/s and C at -4 ft/s as two drivers give omega = -20 rad/s
+    (20 clockwise) and v_A = 2 ft/s, the header's answer by hand."""
+    with open(data("two_inputs_pinion_between_racks.yaml"), encoding="utf-8") as handle:
+        text = handle.read()
+    _assert_books_answer(tmp_path, text, "driver: {x: B, value: 0, rate: 8}",
+                         "drivers: {xB: {x: B, value: 0, rate: 8}, xC: {x: C, value: 0, rate: -4}}")
+
+
+def _assert_books_answer(tmp_path, text, old, new):
+    """The pinion's file with ``old`` replaced by ``new`` (its two drivers) solves to the
+    book's omega = -20 rad/s and v_A = 2 ft/s."""
+    assert old in text
+    path = tmp_path / "drivers.yaml"
+    path.write_text(text.replace(old, new), encoding="utf-8")
+    code, out, err = run(["solve", path, "--format", "csv", "--decimals", "6"])
+    assert code == 0, err
+    rows = dict(line.split(",")[:2] for line in out.splitlines()[1:])
+    assert [float(rows["wdot"]), float(rows["xAdot"])] == pytest.approx([-20.0, 2.0], abs=1e-6)
 
 
 def test_following_the_two_input_hint_gives_the_books_answer(tmp_path):
@@ -209,11 +230,18 @@ def test_following_the_two_input_hint_gives_the_books_answer(tmp_path):
     assert total == pytest.approx([-20.0, 2.0], abs=1e-6)
 
 
-def test_two_inputs_as_coordinates_says_what_coordinates_are():
+def test_two_inputs_as_coordinates_says_what_coordinates_are(tmp_path):
+    """'coordinates:' is a vibration problem's: the message sends the rates to 'drivers:',
+    and the file with its coordinates written as drivers gives the book's answer."""
     code, _, err = run(["solve", data("two_inputs_pinion_between_racks_coordinates.yaml")])
     assert code == 2
     assert "a file with 'coordinates:' is a vibration problem" in err
-    assert "takes a 'driver:' instead" in err and "one driver is supported" in err
+    assert "or 'drivers:' instead of 'coordinates:'" in err
+    with open(data("two_inputs_pinion_between_racks_coordinates.yaml"), encoding="utf-8") as f:
+        text = f.read()
+    _assert_books_answer(tmp_path, text, "coordinates:\n  xb: {x: B}\n  xc: {x: C}\n",
+                         "drivers:\n  xb: {x: B, value: 0, rate: 8}\n"
+                         "  xc: {x: C, value: 0, rate: -4}\n")
 
 
 # --- sweep --vary: memory flat, rows streamed ---------------------------------------------------

@@ -139,7 +139,8 @@ KIND_DIMS = {
     "frequency": _dim((_A, 1), (_T, -1)), "angular_rate": _dim((_A, 1), (_T, -1)),
     "speed": _dim((_L, 1), (_T, -1)), "time": _T, "pressure": _dim((_F, 1), (_L, -2)),
     "area": _dim((_L, 2)), "angular_accel": _dim((_A, 1), (_T, -2)),
-    "length_rate": _dim((_L, 1), (_T, -1)), "length_accel": _dim((_L, 1), (_T, -2))}
+    "length_rate": _dim((_L, 1), (_T, -1)), "length_accel": _dim((_L, 1), (_T, -2)),
+    "per_length": _dim((_L, -1))}
 
 
 class System:
@@ -161,6 +162,7 @@ class System:
                                   else rate[:-2]) + "/s^2"
         names["length_rate"] = names["length"] + "/s"
         names["length_accel"] = names["length"] + "/s^2"
+        names["per_length"] = "1/" + names["length"]      # a diametral pitch (gears:)
         self.names = names
         for kind in names:          # every unit read now: a file's unknown unit fails here
             self.factor(kind)
@@ -197,6 +199,10 @@ class Sites:
         self.kinds: dict = {}
         self.unknown: list = []
         driver = data.get("driver") if isinstance(data.get("driver"), dict) else None
+        drivers = [d for d in (data.get("drivers") or {}).values() if isinstance(d, dict)] \
+            if isinstance(data.get("drivers"), dict) else []
+        if driver is None and drivers:      # several drivers: the first is q
+            driver = drivers[0]
         self.driver_base = None
         if driver is not None:
             self.driver_base = "angle" if "angle" in driver else "length"
@@ -312,12 +318,21 @@ class Sites:
     def _rolling(self, value, path):
         for name, spec in self.items(value, path):
             self._only(spec, path + (name,), {"disc": NAME, "radius": "length",
-                                               "on": self._track})
+                                               "on": self._track, "gear": NAME})
 
     def _track(self, value, path):
         self._only(value, path, {"line": self._line, "side": NAME, "body": NAME,
                                  "circle": NAME, "radius": "length", "inside": NAME,
-                                 "disc": NAME})
+                                 "disc": NAME, "gear": NAME})
+
+    def _gears(self, value, path):
+        """docs/schema.md, "gears": teeth a count, the module and the addendum lengths, the
+        diametral pitch teeth per unit of length, the pressure angle an angle."""
+        for name, spec in self.items(value, path):
+            self._only(spec, path + (name,), {"teeth": None, "module": "length",
+                                               "diametral_pitch": "per_length",
+                                               "addendum": "length",
+                                               "pressure_angle": "angle", "internal": NAME})
 
     def _line(self, value, path):
         if not isinstance(value, (list, str)):
@@ -335,13 +350,19 @@ class Sites:
         if isinstance(value, dict):
             self._only(value, path, {"disc": NAME, "radius": "length", "side": NAME})
 
-    def _driver(self, value, path):
-        base = self.driver_base
+    def _driver(self, value, path, base=None):
+        base = base or self.driver_base
         self._only(value, path, {"angle": NAME, "length": NAME, "x": NAME, "y": NAME,
                                  "value": base,
                                  "rate": "angular_rate" if base == "angle" else "length_rate",
                                  "accel": "angular_accel" if base == "angle"
                                  else "length_accel"})
+
+    def _drivers(self, value, path):
+        """Each named driver as ``driver:``, in the unit of its own kind."""
+        for name, spec in self.items(value, path):
+            base = "angle" if isinstance(spec, dict) and "angle" in spec else "length"
+            self._driver(spec, path + (name,), base)
 
     def _coordinates(self, value, path):
         for name, spec in self.items(value, path):
@@ -509,8 +530,8 @@ QUANTITY_WORDS = (
     "receptance", "amplitude", "damped_frequency", "damping_matrix", "damping_ratio",
     "equilibrium", "force_amplitude", "forcing_frequency", "free_response", "mass_matrix",
     "mode_shape", "natural_frequency", "phase", "spring_force", "stiffness_matrix",
-    "transmissibility", "expr",
-    # efficiency questions (docs/dynamics.md): words, a load's or a slider's name
+    "transmissibility", "expr", "centre_distance", "contact_ratio", "min_teeth", "with",
+    # efficiency questions (docs/machines.md): words, a load's or a slider's name
     "efficiency", "ideal_load", "reverse_load", "self_locking", "at")
 IGNORED = {"title", "source", "notes", "statement", "units", "k", "report", "keys", "quiz",
            "equilibrium"}
@@ -733,7 +754,7 @@ def _scale(value, c):
 # --- order and names ----------------------------------------------------------------------
 #: sections whose entries may come in any order, and mappings inside sections
 ENTRIES = ("frame", "points", "links", "loads", "quantities", "actuators", "sliders",
-           "springs", "dampers", "rolling", "cords")
+           "springs", "dampers", "rolling", "cords", "gears")
 NESTED = (("dynamics",), ("dynamics", "bodies"), ("dynamics", "masses"),
           ("dynamics", "discs"), ("dynamics", "friction"), ("dynamics", "friction_circles"),
           ("excitation", "forces"), ("excitation", "supports"), ("report",))
@@ -792,7 +813,7 @@ class Rename:
         already has (with a point's derived names ``xP``, ``yP``)."""
         taken = set()
         for section in ("params", "quantities", "loads", "sliders", "actuators", "springs",
-                        "dampers", "rolling", "cords", "coordinates"):
+                        "dampers", "rolling", "cords", "coordinates", "drivers"):
             if isinstance(self.data.get(section), dict):
                 taken |= set(self.data[section])
         new = set(self.points.values()) | set(self.links.values())
@@ -817,6 +838,7 @@ class Rename:
         """A name of an answer: ``xB``, ``yBddot`` of a point renamed with it; others kept."""
         if not isinstance(name, str) or name in (self.data.get("quantities") or {}) \
                 or name in (self.data.get("loads") or {}) \
+                or name in (self.data.get("drivers") or {}) \
                 or name in (self.data.get("params") or {}):
             return name
         m = re.fullmatch(r"([xy])(.+?)((?:d)?dot)?", name)
@@ -876,9 +898,14 @@ class Rename:
                 guide["along"] = [P(p) for p in guide["along"]]
             if isinstance(spec.get("carries"), dict):
                 spec["carries"] = self.keys_of(spec["carries"], P)
+        if isinstance(d.get("gears"), dict):
+            d["gears"] = self.keys_of(d["gears"], self.gear)
         for spec in (d.get("rolling") or {}).values():
             spec["disc"] = B(spec.get("disc"))
             on = spec.get("on") or {}
+            for where in (spec, on):
+                if "gear" in where:
+                    where["gear"] = self.gear(where["gear"])
             if isinstance(on.get("line"), list):
                 on["line"] = [P(p) for p in on["line"]]
             if "circle" in on:
@@ -897,8 +924,9 @@ class Rename:
             spec = d.get(section)
             if isinstance(spec, dict):
                 self.coordinate(spec)
-        for spec in (d.get("coordinates") or {}).values():
-            self.coordinate(spec)
+        for section in ("coordinates", "drivers"):
+            for spec in (d.get(section) or {}).values():
+                self.coordinate(spec)
         for spec in (d.get("loads") or {}).values():
             if "at" in spec:
                 spec["at"] = P(spec["at"])
@@ -911,6 +939,9 @@ class Rename:
                 if isinstance(names, list):
                     fn = P if section == "points" else self.answer
                     d["report"][section] = [fn(n) for n in names]
+        quiz = d.get("quiz")
+        if isinstance(quiz, dict) and isinstance(quiz.get("not_asked"), list):
+            quiz["not_asked"] = [self.answer(n) for n in quiz["not_asked"]]   # report names
         for key in d.get("keys") or []:
             for part in ("values", "wrong", "tolerances"):
                 if isinstance(key.get(part), dict):
@@ -987,6 +1018,19 @@ class Rename:
                 spec[key] = self.answer(spec[key])
         if "expr" in spec:
             spec["expr"] = self.expression(spec["expr"])
+        for key in ("centre_distance", "contact_ratio"):
+            if isinstance(spec.get(key), list):
+                spec[key] = [self.gear(g) for g in spec[key]]
+        for key in ("min_teeth", "with"):
+            if key in spec:
+                spec[key] = self.gear(spec[key])
+
+    def gear(self, name):
+        """A gear of ``gears:``: one named as a link is that link's (docs/schema.md,
+        "gears"), renamed with it; the others keep their names."""
+        if isinstance(name, str) and name in (self.data.get("gears") or {}):
+            return self.body(name)
+        return name
 
     def dynamics(self, spec):
         if not isinstance(spec, dict):

@@ -14,9 +14,12 @@ from linkcli.errors import InputError
 
 @click.command()
 @click.argument("file")
-@click.option("--to", "target", type=click.Choice(["moodle", "html", "markdown"]),
+@click.option("--to", "target", type=click.Choice(["moodle", "html", "markdown", "exam",
+                                                  "booklet"]),
               required=True, help="moodle: a Moodle XML question bank; html or markdown: a "
-              "worked solution.")
+              "worked solution; exam: the paper exam of each digit (statement, data, "
+              "figure, answers to write); booklet: each digit's worked solution and key, "
+              "both HTML pages to print.")
 @click.option("--k", "k_text", default=None, metavar="K",
               help="Digits: 0-9, 1,3,5 or one digit (default: the file's own).")
 @click.option("--lang", type=click.Choice(["it", "en"]), default="it", show_default=True)
@@ -45,6 +48,8 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, no_given,
       linkcli export mechanisms/padova-2020-02.yaml --to moodle --k 0-9 -o quiz.xml
       linkcli export mechanisms/padova-2020-02.yaml --to moodle --no-given -o quiz.xml
       linkcli export mechanisms/padova-2020-07.yaml --to html --lang it -o solution.html
+      linkcli export mechanisms/padova-2020-02.yaml --to exam --k 0-9 -o exam.html
+      linkcli export mechanisms/padova-2020-02.yaml --to booklet --k 0-9 -o booklet.html
     """
     from linkcli.runs.batch import parse_k
     from linkcli.input.source import load_file
@@ -58,13 +63,13 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, no_given,
         from linkcli.cli.loading import refuse_clutch
         refuse_clutch(file, "export as a quiz or a worked solution")
     ks = parse_k(k_text) if k_text is not None else None
-    if (symbolic or numbers is not None) and target == "moodle":
+    if (symbolic or numbers is not None) and target not in ("html", "markdown"):
         raise InputError("--symbolic goes with a worked solution (--to html or markdown)",
-                         key="--symbolic", hint="drop --symbolic for a Moodle export")
+                         key="--symbolic", hint=f"drop --symbolic for --to {target}")
     check_symbolic(symbolic, numbers, seconds)
-    if no_given and target != "moodle":
-        raise InputError("--no-given goes with a Moodle quiz (--to moodle): a worked "
-                         "solution asks no boxes", key="--no-given",
+    if no_given and target not in ("moodle", "exam"):
+        raise InputError("--no-given goes with a Moodle quiz or a paper exam (--to moodle "
+                         "or exam): a worked solution asks no boxes", key="--no-given",
                          hint="drop --no-given for a worked solution")
     if target == "moodle":
         from linkcli.exports.moodle import export as make, repeated
@@ -73,13 +78,21 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, no_given,
         emit(text.rstrip("\n"), output)
         echo(_repeated_line(file, *repeated(doc), no_given), err=True)
         return
+    if target in ("exam", "booklet"):
+        from linkcli.exports import booklet
+        text = booklet.exam(doc, ks, lang, not no_figure, method, no_given) \
+            if target == "exam" else booklet.booklet(doc, ks, lang, not no_figure, method)
+        emit(text.rstrip("\n"), output)
+        return
     text = _worked(doc, ks, target, lang, no_figure, method, symbolic, numbers, seconds)
     emit(text.rstrip("\n"), output)
 
 
-def _repeated_line(file, count, total, no_given) -> str:
-    """'FILE: N of M boxes ask a value the question gives', and what --no-given does."""
-    what = "left out by --no-given" if no_given else "--no-given leaves them out"
+def _repeated_line(file, count, total, ask_given, no_given) -> str:
+    """'FILE: N of M boxes ask a value the question gives', and what leaves them out:
+    --no-given, the file's quiz.ask_given: false, or (neither) what --no-given would do."""
+    what = "left out by --no-given" if no_given else "left out by the file's " \
+        "quiz.ask_given: false" if not ask_given else "--no-given leaves them out"
     return (f"{os.path.basename(file)}: {count} of {total} box{'' if total == 1 else 'es'} "
             f"ask{'s' if count == 1 else ''} a value the question gives ({what})")
 

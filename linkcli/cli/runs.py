@@ -131,10 +131,16 @@ def check(paths, verbose, form):
 @click.option("--method", type=click.Choice(METHODS), default="closed",
               show_default=True)
 @click.option("--tol", type=float, default=None, help="Newton's relative tolerance.")
+@click.option("--driver", "lead", default=None, metavar="NAME",
+              help="With several drivers: the one swept [default: the first].")
+@click.option("--tie", "ties", multiple=True, metavar="NAME=EXPR",
+              help="With several drivers: driver NAME set to an expression of the swept one "
+              "(display units), its rates by the chain rule [default: held at the file's "
+              "value and rates]. Repeat for several.")
 @K_OPTION
 @OUTPUT_OPTION
-def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, method, tol, k,
-          output):
+def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, method, tol,
+          lead, ties, k, output):
     """Solve FILE over a range of driver values, one row per value; or, with --vary, over
     a range of one of its parameters.
 
@@ -173,12 +179,14 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
         if start is None or stop is None:
             raise InputError("give --from and --to (the driver's range), or --vary "
                              "NAME=FROM:TO:STEPS (a parameter's)", key="--from")
-        mech = load(file, k, method=method, tol=check_tol(tol), clutch="sweep")
+        from linkcli.answers.quantities.drive import led_by
+        mech = led_by(load(file, k, method=method, tol=check_tol(tol), clutch="sweep"), lead)
         q = driver_range(start, stop, steps, step)
         from linkcli.runs.limits.names import sweep_names
         chosen = sweep_names(mech, chosen)      # maxima, strokes ... are not functions of q
         check_every(every)
-        sweeper = Sweeper(mech, q, chosen, method=method, tol=check_tol(tol))
+        sweeper = Sweeper(mech, q, chosen, method=method, tol=check_tol(tol),
+                          ties=_ties(ties))
         writer = (lambda put: write_sweep(sweeper, form, every, decimals, put))
     stream = Stream(output)     # rows are printed as each block is solved
     try:
@@ -187,6 +195,18 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
         stream.close()
     for issue in issues:
         echo(issue.text(), err=True, prefix="linkcli: ")
+
+
+def _ties(texts) -> dict:
+    """``--tie NAME=EXPR`` options as {NAME: EXPR}."""
+    out = {}
+    for text in texts:
+        name, sep, expr = text.partition("=")
+        if not sep or not name.strip() or not expr.strip():
+            raise InputError(f"--tie {text!r}: expected NAME=EXPR", key="--tie",
+                             hint="e.g. --tie phi2=180-phi1")
+        out[name.strip()] = expr.strip()
+    return out
 
 
 @click.command()

@@ -358,12 +358,24 @@ def _accel_stated(mech) -> bool:
                 or mech.dynamics is not None)
 
 
-def repeated(doc) -> tuple[int, int]:
-    """(boxes whose value the question gives, boxes) of a question of ``doc``: the report's
-    names are the same for every digit."""
+def left_out_boxes(mech, no_given=False) -> frozenset:
+    """The report's names the quiz does not ask: those the question gives (:func:`given`)
+    under ``no_given`` (``--no-given``) or the file's ``quiz.ask_given: false``, and the
+    names of ``quiz.not_asked`` (the statement does not ask them)."""
+    out = set(mech.quiz.not_asked)
+    if no_given or not mech.quiz.ask_given:
+        out |= given(mech)
+    return frozenset(out)
+
+
+def repeated(doc) -> tuple[int, int, bool]:
+    """(boxes whose value the question gives, boxes, whether the file's quiz asks them) of
+    a question of ``doc``: the report's names less ``quiz.not_asked``, the same for every
+    digit."""
     mech = build(doc, None)
-    names = asked(mech, [n for s in REPORT_SECTIONS for n in mech.report.get(s) or []])
-    return len(given(mech) & set(names)), len(names)
+    names = [n for n in asked(mech, [n for s in REPORT_SECTIONS for n in
+                                     mech.report.get(s) or []]) if n not in mech.quiz.not_asked]
+    return len(given(mech) & set(names)), len(names), mech.quiz.ask_given
 
 
 def _solved(mech, method):
@@ -411,6 +423,15 @@ def _checked(mech, result, places, tolerance, file_k, decimals, left_out=frozens
     return boxes
 
 
+def refuse_one_question(doc, ks) -> None:
+    """Refuse several digits ``ks`` of a file that does not depend on k: they would all be
+    the same question."""
+    if ks is not None and len(ks) > 1 and doc.data.get("k") is None:
+        raise InputError(f"the file does not depend on k (it sets no default 'k'), so the "
+                         f"digits {', '.join(str(k) for k in ks)} would be one question",
+                         file=doc.name, key="--k", hint="leave --k out for one question")
+
+
 def export(doc, ks, decimals=None, tolerance=None, lang="it", figure=True,
            method="closed", no_given=False) -> str:
     """The Moodle XML text for the document ``doc`` at digits ``ks`` (None: the file's own).
@@ -424,10 +445,7 @@ def export(doc, ks, decimals=None, tolerance=None, lang="it", figure=True,
     if not report_names(base):
         raise InputError("the file has no report to ask", file=base.file, key="report",
                          hint="list the quantities the answer sheet asks for under 'report'")
-    if ks is not None and len(ks) > 1 and doc.data.get("k") is None:
-        raise InputError(f"the file does not depend on k (it sets no default 'k'), so the "
-                         f"digits {', '.join(str(k) for k in ks)} would be one question",
-                         file=base.file, key="--k", hint="leave --k out for one question")
+    refuse_one_question(doc, ks)
     picture = figure if callable(figure) else _exam_picture(lang, method) if figure else None
     quiz = ET.Element("quiz")
     category = ET.SubElement(ET.SubElement(quiz, "question", type="category"), "category")
@@ -437,13 +455,16 @@ def export(doc, ks, decimals=None, tolerance=None, lang="it", figure=True,
         mech = build(doc, k)
         result, solution = _solved(mech, method)
         places = mech.report.get("decimals", 1) if decimals is None else decimals
-        left_out = frozenset(given(mech)) if no_given else frozenset()
+        left_out = left_out_boxes(mech, no_given)
         boxes = _checked(mech, result, places, tolerance, base.k, decimals, left_out)
         if not boxes:
             raise InputError(f"{_digit(mech)}every box of the report asks a value the "
-                             "question gives, so --no-given leaves no question",
-                             file=mech.file, key="--no-given",
-                             hint="drop --no-given, or report a quantity to find")
+                             "question gives or one that quiz.not_asked lists, so the quiz "
+                             "has no question", file=mech.file,
+                             key="--no-given" if no_given else "quiz",
+                             hint="ask the given values (no --no-given, quiz.ask_given: "
+                             "true), list fewer names in quiz.not_asked, or report a "
+                             "quantity to find")
         figure_name = f"{name}-k{mech.k}.png" if mech.k is not None else f"{name}.png"
         q = ET.SubElement(quiz, "question", type="cloze")
         ET.SubElement(ET.SubElement(q, "name"), "text").text = \

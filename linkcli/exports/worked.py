@@ -26,6 +26,7 @@ from linkcli.runs.sheet import evaluate
 from linkcli.texts.data import data_lines
 from linkcli.exports.text import fence, markdown, refuse_unfit, visible
 from linkcli.input.document import build
+from linkcli.kinematics.closed_form import unit_rates
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import REPORT_SECTIONS
 from linkcli.model.rounding import noise_free
@@ -115,7 +116,7 @@ def blocks(mech, lang="en", figure=True, method="closed") -> list:
     out += [Block("heading", w["data"]), Block("lines", data_lines(mech, lang, solution))]
     out += [Block("heading", w["structure"]),
             Block("lines", [say(x) for x in explain(mech, method).splitlines()[2:]])]
-    if mech.elements is None and method == "closed":
+    if mech.elements is None and method == "closed" and len(mech.coordinates) == 1:
         out += _kinematics(solved, w, say)
     out.append(Block("heading", w["results"]))
     decimals = mech.report.get("decimals", 1)
@@ -143,14 +144,14 @@ def _kinematics(mech, w, say=str) -> list:
     """Closure, velocity and acceleration systems of each group, and the statics, each line
     written by ``say`` (``_language``)."""
     solver = solver_for(mech)
-    d = mech.driver
+    value, rate, accel = mech.inputs
     unit, f = mech.units.display("length", 0)
-    kin = solver.positions(d.value)
+    kin = solver.positions(value)
     solver.check(kin, velocities=False)
-    solver.velocities(kin, d.rate)
+    solver.velocities(kin, rate)
     solver.check(kin, velocities=True)
     vel_systems = _systems(solver, kin, 1)
-    solver.accelerations(kin, d.accel, keep=True)
+    solver.accelerations(kin, accel, keep=True)
     acc_systems = _systems(solver, kin, 2)
     kin.linear.clear()
     lines = []
@@ -217,17 +218,27 @@ def _shown(point: str) -> str:
 
 
 def _statics(mech, solver, kin, w, say=str):
-    from linkcli.forces.statics import coefficient
-    unit_kin = solver.velocities(kin.at_rest(), np.ones_like(kin.q))
+    """The loads' virtual power coefficients c_i (per unit driver rate): with several
+    drivers a column c_ij per driver j, its unit rate with the others at rest."""
+    from linkcli.forces.inputs import load_coefficient
+    drivers = mech.coordinates if mech.elements is None else mech.coordinates[:1]
+    units = [unit_rates(solver, kin, j) for j in range(len(drivers))]
     rows = []
     for load in mech.loads.values():
-        c = float(np.ravel(coefficient(mech, load, kin.pos, unit_kin.vel))[0])
+        cs = [float(np.ravel(load_coefficient(mech, load, kin.pos, u.vel, j))[0])
+              if len(drivers) > 1 else
+              float(np.ravel(load_coefficient(mech, load, kin.pos, u.vel, None))[0])
+              for j, u in enumerate(units)]
         kind = mech.load_unit_kind(load)
         value = "?" if load.value is None else f"{load.value / mech.units.factor(kind):.6g}"
-        rows.append([load.name, say(value), say(f"{c:.6g}")])
-    return [Block("heading", w["statics"]),
-            Block("text", "sum_i L_i c_i = 0"),
-            Block("table", rows, [w["load"], w["value"], w["coefficient"]])]
+        rows.append([load.name, say(value)] + [say(f"{c:.6g}") for c in cs])
+    if len(drivers) == 1:
+        return [Block("heading", w["statics"]), Block("text", "sum_i L_i c_i = 0"),
+                Block("table", rows, [w["load"], w["value"], w["coefficient"]])]
+    return [Block("heading", w["statics"]), Block("text", "sum_i L_i c_ij = 0, j = " +
+                                                  ", ".join(d.name for d in drivers)),
+            Block("table", rows, [w["load"], w["value"]] +
+                  [f"{w['coefficient']}: {d.name}" for d in drivers])]
 
 
 def with_formulas(items, formulas, lang="en") -> list:
@@ -312,9 +323,36 @@ def _math(body, tex, display=True) -> str:
 
 
 # --- renderers ---------------------------------------------------------------------------
-def to_html(items, lang="en") -> str:
-    def esc(text):
-        return html.escape(visible(text))
+STYLE = ("body{font-family:sans-serif;max-width:60em;margin:2em auto;padding:0 1em}"
+         "pre{background:#f6f6f6;padding:.6em;white-space:pre-wrap;overflow-wrap:anywhere}"
+         "table{border-collapse:collapse;margin:.5em 0}"
+         "td,th{border:1px solid #bbb;padding:.2em .6em;text-align:left}"
+         ".figure svg,.figure img{max-width:100%;height:auto}"
+         ".formula{margin:.4em 0}"
+         ".terms{display:block;padding-left:2em;text-indent:-2em;line-height:2}"
+         'math{font-family:"Latin Modern Math","STIX Two Math","DejaVu Math TeX Gyre",math}'
+         "mtable.matrix{border:solid currentColor;border-width:0 1.5px;padding:0 .3em;"
+         "background:" + ",".join(f"linear-gradient(currentColor,currentColor) {x} {y}/.3em "
+                                  "1.5px no-repeat" for x in ("left", "right")
+                                  for y in ("top", "bottom")) + "}")
+
+
+def esc(text) -> str:
+    """The file's or our text as HTML text: unfit characters shown as U+FFFD, escaped."""
+    return html.escape(visible(text))
+
+
+def svg_image(svg: str, alt: str) -> str:
+    """An SVG document as an <img> of a data URI: a page that holds several figures keeps
+    each one's ids to itself."""
+    import base64
+    data = base64.b64encode(visible(svg).encode("utf-8")).decode("ascii")
+    return f'<img src="data:image/svg+xml;base64,{data}" alt="{esc(alt)}">'
+
+
+def html_body(items, inline=True) -> str:
+    """The blocks as HTML elements: the first heading h1, the others h2; the figure as
+    inline SVG (``inline``) or as an image of its own (:func:`svg_image`)."""
     body = []
     for b in items:
         if b.kind == "heading":
@@ -331,27 +369,23 @@ def to_html(items, lang="en") -> str:
             body.append(f'<table class="results"><thead><tr>{head}</tr></thead>'
                         f"<tbody>{rows}</tbody></table>")
         elif b.kind == "figure":
-            svg = visible(b.content[b.content.find("<svg"):])
-            body.append(f'<div class="figure">{svg}</div>')
+            svg = b.content[b.content.find("<svg"):]
+            shown = visible(svg) if inline else svg_image(svg, "figure")
+            body.append(f'<div class="figure">{shown}</div>')
         elif b.kind == "formula":
             body.append(f'<div class="formula">{formula_mathml(*b.content)}</div>')
-    title = esc(str(items[0].content)) if items else "linkcli"
-    style = ("body{font-family:sans-serif;max-width:60em;margin:2em auto;padding:0 1em}"
-             "pre{background:#f6f6f6;padding:.6em;white-space:pre-wrap;"
-             "overflow-wrap:anywhere}"
-             "table{border-collapse:collapse;margin:.5em 0}"
-             "td,th{border:1px solid #bbb;padding:.2em .6em;text-align:left}"
-             ".figure svg{max-width:100%;height:auto}"
-             ".formula{margin:.4em 0}"
-             ".terms{display:block;padding-left:2em;text-indent:-2em;line-height:2}"
-             'math{font-family:"Latin Modern Math","STIX Two Math","DejaVu Math TeX Gyre",math}'
-             "mtable.matrix{border:solid currentColor;border-width:0 1.5px;padding:0 .3em;"
-             "background:" + ",".join(f"linear-gradient(currentColor,currentColor) {x} {y}/.3em "
-                                      "1.5px no-repeat" for x in ("left", "right")
-                                      for y in ("top", "bottom")) + "}")
+    return "\n".join(body)
+
+
+def page(title, body, lang="en", style=STYLE) -> str:
+    """One self-contained HTML page."""
     return (f'<!DOCTYPE html>\n<html lang="{lang}"><head><meta charset="utf-8">'
-            f"<title>{title}</title><style>{style}</style></head><body>"
-            + "\n".join(body) + "</body></html>\n")
+            f"<title>{esc(title)}</title><style>{style}</style></head><body>"
+            + body + "</body></html>\n")
+
+
+def to_html(items, lang="en") -> str:
+    return page(str(items[0].content) if items else "linkcli", html_body(items), lang)
 
 
 def to_markdown(items) -> str:

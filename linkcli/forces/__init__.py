@@ -1,6 +1,7 @@
 """Forces: statics by virtual work, inverse dynamics, joint reactions, power balance.
 
-``statics`` (virtual-power coefficients and the unknown load), ``motion``
+``statics`` (virtual-power coefficients and the unknown load), ``inputs`` (one unknown
+load per driver of several), ``motion``
 (centres of mass, spins, energies, the power of gravity and inertia),
 ``friction``, ``pairs`` (directions of sliding pairs and contacts),
 ``newton_euler`` (the equations of every body), ``joint_forces`` (their

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.errors import Caution
+from linkcli.errors import Caution, InputError
 from linkcli.kinematics.refusals import where_text
 from linkcli.forces import coulomb, friction
 from linkcli.forces.newton_euler import System
@@ -42,6 +42,11 @@ def solve(mech, kin) -> Reactions:
 
     ``kin`` needs positions; velocities with friction; accelerations with masses.
     """
+    if len(mech.coordinates) > 1 and mech.elements is None:
+        raise InputError("joint forces of a mechanism of several drivers are not solved: the "
+                         "Newton-Euler system takes one unknown load", file=mech.file,
+                         key="--reactions", hint="ask for the drivers' unknown loads (virtual "
+                         "work, one per driver), or hold all inputs but one")
     dyn = mech.dynamics
     system = System(mech, dyn, kin)
     rhs = -system.known()

@@ -71,9 +71,10 @@ class ContactsSection:
 
     def rolling_entry(self, name, value, path, units, bodies, figure) -> Rolling:
         self.name(name, path, what="rolling contact")
-        spec = self.mapping(value, path, {"disc", "radius", "on"}, ("disc", "radius", "on"))
+        spec = self.mapping(value, path, {"disc", "radius", "on", "gear"}, ("disc", "on"))
         disc, center = self.disc_body(spec["disc"], path + ("disc",), bodies)
-        radius = self.positive(spec["radius"], path + ("radius",), units)
+        gear = self.gear_of(spec, path, disc)
+        radius = self.pitch_radius(spec, path, units, gear)
         on = self.mapping(spec["on"], path + ("on",))
         kinds = [k for k in ("line", "circle", "disc") if k in on]
         if len(kinds) != 1:
@@ -95,9 +96,7 @@ class ContactsSection:
                 carrier = self.ground(center, where, bodies, u, figure)
             # the centre is on `side` of the line: the contact is on the other side
             return Rolling(name, disc, center, radius, "line", u, -side, carrier=carrier)
-        allowed = {"circle", "disc", "radius", "inside"}
-        self.mapping(on, where, allowed, ("radius",))
-        track_radius = self.positive(on["radius"], where + ("radius",), units)
+        self.mapping(on, where, {"circle", "disc", "radius", "inside", "gear"})
         if kinds[0] == "circle":
             track = self.name(on["circle"], where + ("circle",),
                               {p for p in figure if p in self.fixed_points}, "fixed point")
@@ -106,6 +105,9 @@ class ContactsSection:
             other, track = self.disc_body(on["disc"], where + ("disc",), bodies)
             if other == disc:
                 raise self.error(where + ("disc",), "a disc cannot roll on itself")
+        ring = self.gear_of(on, where, other)
+        track_radius = self.pitch_radius(on, where, units, ring, "track")
+        self.meshing(path, gear, ring)
         inside = self.inside(on, where, figure[center], figure[track], radius, track_radius)
         return Rolling(name, disc, center, radius, kinds[0], track=track,
                        track_radius=track_radius, inside=inside, other=other)

@@ -29,6 +29,7 @@ from linkcli.input.report import SECTIONS, ReportSection
 from linkcli.input.keys import KeysSection
 from linkcli.input.bodies import BodiesSection
 from linkcli.input.contacts import ContactsSection
+from linkcli.input.gears import GearsSection
 from linkcli.input.derived import DerivedSection
 from linkcli.input.find import FindSection
 from linkcli.input.oscillation import OscillationSection
@@ -39,9 +40,10 @@ from linkcli.input.reader import (NAME, UNKNOWN, InputErrors, Reader, _kind, _Sk
                                   reserved_parameter)
 
 TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points", "links",
-            "actuators", "sliders", "driver", "coordinates", "loads", "quantities", "report",
+            "actuators", "sliders", "driver", "drivers", "coordinates", "loads", "quantities",
+            "report",
             "keys", "dynamics", "springs", "dampers", "excitation", "initial", "equilibrium",
-            "rolling", "cords", "statement", "quiz", "find", "shafts", "clutch"}
+            "rolling", "cords", "statement", "quiz", "find", "gears", "shafts", "clutch"}
 VIBRATION_KEYS = ("springs", "dampers", "excitation", "initial", "equilibrium")
 
 __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS", "UNKNOWN",
@@ -49,9 +51,9 @@ __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS
 
 
 class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSection,
-             TextbookQuantities, ForceQuantities, EfficiencyQuantities, LimitsSection, VibrationQuantities,
-             ReportSection, KeysSection, DerivedSection, OscillationSection, FindSection,
-             ClutchSection):
+             TextbookQuantities, ForceQuantities, EfficiencyQuantities, LimitsSection,
+             VibrationQuantities, ReportSection, KeysSection, DerivedSection,
+             OscillationSection, FindSection, GearsSection, ClutchSection):
     """The whole document: units, params, frame and points, then each section."""
 
     def parse(self) -> Mechanism:
@@ -74,29 +76,34 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
         self.block(self.links, data, units, pool, bodies)
         actuators = self.block(self.actuators, data, pool, bodies) or {}
         self.block(self.sliders, data, units, pool, bodies, fixed)
+        self.gear_table = self.block(self.gears, data, units) or {}
         rolling = self.block(self.contacts, data, units, pool, bodies, fixed, moving) or {}
         coordinates = ()
         self.file_units = units
+        self.inputs_declared(data)
         if "coordinates" in data:
-            if "driver" in data:
-                self.error(("driver",), "a file has either a driver (one degree of freedom, "
-                           "with its rates) or coordinates (vibrations), not both",
-                           hint="remove one of 'driver' and 'coordinates'")
             coordinates = self.block(self.coordinates, data, units, pool, fixed, moving) or ()
             driver = coordinates[0] if coordinates else None
         else:
-            driver = self.block(self.driver, data, units, pool, actuators)
+            if "drivers" in data:
+                coordinates = self.block(self.drivers, data, units, pool) or ()
+                driver = coordinates[0] if coordinates else None
+            else:
+                driver = self.block(self.driver, data, units, pool, actuators)
             for key in VIBRATION_KEYS:
                 if key in data:
                     self.error((key,), f"'{key}' belongs to a vibration problem, which declares "
                                "its coordinates", hint="replace 'driver:' by 'coordinates:', "
                                "e.g. coordinates: {theta: {angle: [O, A]}}")
         loads = self.block(self.loads, data, units, pool, bodies, actuators, driver,
-                           "coordinates" not in data) or {}
-        self.vibration = {"coordinates": {c.name for c in coordinates},
+                           "coordinates" not in data,
+                           coordinates if "drivers" in data else ()) or {}
+        self.vibration = {"coordinates": {c.name for c in coordinates}
+                          if "coordinates" in data else set(),
                           "springs": self.element_names(data, "springs"),
                           "dampers": self.element_names(data, "dampers")}
-        quantities = self.block(self.quantities, data, pool, loads, driver) or {}
+        quantities = self.block(self.quantities, data, pool, loads, driver,
+                                coordinates if "drivers" in data else ()) or {}
         design = self.block(self.find, data, quantities)
         report = self.block(self.report, data, quantities, loads, pool) or {}
         if design is not None:
@@ -114,10 +121,11 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
                          as_drawn=self.k_override is None or self.k_override == data.get("k"),
                          statement=self.block(self.statement, data) or "",
                          quiz=self.block(self.quiz, data, report) or Quiz(),
-                         params={n: v for n, v in self.names.items()}, design=design)
+                         params={n: v for n, v in self.names.items()}, design=design,
+                         gears=self.gear_table)
         if "dynamics" in data:
             mech.dynamics = DynamicsReader(self, mech, _Skip).run(data["dynamics"])
-        if coordinates:       # after the dynamics: an element may name a rolling disc
+        if "coordinates" in data:   # after the dynamics: an element may name a rolling disc
             mech.elements = ElementsReader(self, mech, _Skip).run(data)
             for load in loads.values():
                 if load.kind == "driver":
@@ -132,6 +140,16 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
             raise InputErrors(self.errors)
         return mech
 
+    def inputs_declared(self, data) -> None:
+        """A file declares its inputs once: ``driver`` (one), ``drivers`` (several, each
+        driven) or ``coordinates`` (a vibration problem's)."""
+        given = [k for k in ("driver", "drivers", "coordinates") if k in data]
+        if len(given) > 1:
+            self.error((given[1],), f"a file has one of 'driver' (one degree of freedom), "
+                       f"'drivers' (several, each with its rates) and 'coordinates' "
+                       f"(vibrations), not both '{given[0]}' and '{given[1]}'",
+                       hint=f"remove one of '{given[0]}' and '{given[1]}'")
+
     def statement(self, data) -> str:
         value = data.get("statement", "")
         if value is None:
@@ -141,11 +159,12 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
         return value
 
     def quiz(self, data, report) -> Quiz:
-        """``quiz: {points: {position: 9, velocity: 9, statics: 2}, tolerance: 0.05}``."""
+        """``quiz: {points: {position: 9, velocity: 9, statics: 2}, tolerance: 0.05,
+        ask_given: false, not_asked: [phi4dot, phi5dot]}``."""
         spec = data.get("quiz")
         if spec is None:
             return Quiz()
-        spec = self.mapping(spec, ("quiz",), {"points", "tolerance"})
+        spec = self.mapping(spec, ("quiz",), {"points", "tolerance", "ask_given", "not_asked"})
         points = None
         if "points" in spec:
             path = ("quiz", "points")
@@ -165,7 +184,23 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
             if not tolerance > 0:
                 raise self.error(("quiz", "tolerance"), f"a tolerance must be positive, got "
                                  f"{spec['tolerance']!r}", hint="in the answers' display units")
-        return Quiz(points, tolerance)
+        ask_given = spec.get("ask_given", True)
+        if not isinstance(ask_given, bool):
+            raise self.error(("quiz", "ask_given"), f"expected true or false, got {ask_given!r}",
+                             hint="false leaves out the boxes whose value the question gives")
+        return Quiz(points, tolerance, ask_given, self.not_asked(spec, report))
+
+    def not_asked(self, spec, report) -> tuple:
+        """``quiz.not_asked``: report names the quiz leaves out (the statement does not ask
+        them); each must be a name of the report."""
+        path = ("quiz", "not_asked")
+        value = spec.get("not_asked", [])
+        if not isinstance(value, list):
+            raise self.error(path, f"expected a list of the report's names, got {value!r}")
+        listed = {n for section in SECTIONS for n in (report or {}).get(section) or []
+                  if isinstance(n, str)}
+        return tuple(self.name(n, path + (i,), listed, "name of the report")
+                     for i, n in enumerate(value))
 
     @staticmethod
     def element_names(data, key) -> set:

@@ -26,6 +26,7 @@ import math
 import re
 
 from linkcli.model.mechanism import VIBRATION, AnswerKey, KeyEntry, Tolerance, split_rate
+from linkcli.input.reader import _Skip
 
 #: a relative tolerance as written: a percentage of at most 6 + 6 digits ('2%', '0.5 %')
 TOLERANCE_PERCENT = re.compile(r"^([0-9]{1,6}(\.[0-9]{1,6})?) ?%$")
@@ -104,6 +105,8 @@ class KeysSection:
         is_point = name in pool and (isinstance(printed, list) or name not in quantities)
         if not is_point:
             base = split_rate(name, quantities)
+            if base is not None and base[0] in getattr(self, "failed", ()):
+                raise _Skip()           # the quantity's own error is reported already
             if base is None or base[0] not in quantities:
                 raise self.error(path, f"the key names '{name}', which the file does not define",
                                  hint="define it under 'quantities' or fix the name")

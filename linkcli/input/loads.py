@@ -19,9 +19,12 @@ class LoadsSection:
     """``driver`` and ``loads`` (a mixin of the Parser)."""
 
     def driver(self, data, units, pool, actuators) -> Driver:
-        path = ("driver",)
-        spec = self.mapping(self.get(data, (), "driver"), path,
-                            {"angle", "length", "x", "y", "value", "rate", "accel"},
+        return self.driven(self.get(data, (), "driver"), ("driver",), units, pool)
+
+    def driven(self, value, path, units, pool, name="q") -> Driver:
+        """A driver's coordinate, its value (the figure's) and its rate and accel (0 when
+        not given), in SI."""
+        spec = self.mapping(value, path, {"angle", "length", "x", "y", "value", "rate", "accel"},
                             ("value",))
         kind, a, b = self.coordinate_kind(spec, path, pool)
         base = "angle" if kind == "angle" else "length"
@@ -30,7 +33,33 @@ class LoadsSection:
                        for order, key in ((1, "rate"), (2, "accel")))
         if kind == "length" and value <= 0:
             raise self.error(path + ("value",), "a driving length must be positive")
-        return Driver(kind, a, b, value, rate, accel)
+        return Driver(kind, a, b, value, rate, accel, name)
+
+    def drivers(self, data, units, pool) -> tuple:
+        """``drivers``: every input of a mechanism of several degrees of freedom, each named
+        and driven as ``driver:`` is (its value, rate and accel); the first is also ``q``."""
+        path = ("drivers",)
+        spec = self.mapping(data["drivers"], path)
+        if not spec:
+            raise self.error(path, "give at least one driver, e.g. drivers: {theta1: {angle: "
+                             "[O, A], value: 30, rate: 10}}")
+        out = []
+        for name, value in spec.items():
+            d = self.block(self.named_driver, name, value, path + (name,), units, pool)
+            if d is None:
+                continue
+            twin = next((o for o in out if o.same_coordinate(d)), None)
+            if twin is not None:
+                self.error(path + (name,), f"driver '{name}' drives the {d.words}, "
+                           f"which driver '{twin.name}' already fixes: one coordinate takes "
+                           "one driver", hint=f"drive another coordinate, or remove '{name}'")
+                continue
+            out.append(d)
+        return tuple(out)
+
+    def named_driver(self, name, value, path, units, pool) -> Driver:
+        self.name(name, path, what="driver")
+        return self.driven(value, path, units, pool, name)
 
     def driver_rate(self, spec, path, key, base, order, units) -> float:
         """The driver's rate of ``order`` (``key``: rate or accel) in SI, from the file's
@@ -82,27 +111,34 @@ class LoadsSection:
             measured = self.number(spec["value"], path + ("value",), base, units)
         return Driver(kind, a, b, measured, 0.0, 0.0, name)
 
-    def loads(self, data, units, pool, bodies, actuators, driver, unknown_needed=True) -> dict:
+    def loads(self, data, units, pool, bodies, actuators, driver, unknown_needed=True,
+              drivers=()) -> dict:
+        """``loads``: one unknown (one per driver with several drivers, ``drivers``)."""
         spec = self.mapping(self.get(data, (), "loads", required=False, default={}) or {},
                             ("loads",))
         loads = {}
         for name, value in spec.items():
             load = self.block(self.load, name, value, units, pool, bodies, actuators, driver,
-                              data)
+                              data, drivers)
             if load is not None:
                 loads[name] = load
         unknown = [n for n, load in loads.items() if load.value is None]
+        wanted = max(1, len(drivers))
         if not unknown_needed:
             for n in unknown:
                 self.error(("loads", n), "a vibration problem has no unknown load: every load "
                            "is known and acts in the equilibrium", hint="give its value")
-        elif loads and len(unknown) != 1 and len(loads) == len(spec):
+        elif loads and len(unknown) != wanted and len(loads) == len(spec):
             which = ", ".join(unknown) if unknown else "none"
-            self.error(("loads",), f"exactly one load must be unknown, found {len(unknown)} ({which})",
+            exactly = "exactly one load must be unknown" if wanted == 1 else \
+                f"one load per driver must be unknown ({wanted}: " + \
+                ", ".join(d.name for d in drivers) + ")"
+            self.error(("loads",), f"{exactly}, found {len(unknown)} ({which})",
                        hint="write 'unknown' as the value the statics must find")
         return loads
 
-    def load(self, name, value, units, pool, bodies, actuators, driver, data=None) -> Load:
+    def load(self, name, value, units, pool, bodies, actuators, driver, data=None,
+             drivers=()) -> Load:
         path = ("loads", name)
         self.name(name, path, what="load")
         value = self.mapping(value, path, {"type", "at", "on", "x", "y", "magnitude", "angle",
@@ -129,6 +165,11 @@ class LoadsSection:
             target = self.name(self.get(value, path, "on"), path + ("on",), pool_b, "link")
         elif kind == "axial":
             target = self.name(self.get(value, path, "on"), path + ("on",), actuators, "actuator")
+        elif drivers:                     # several drivers: the one it acts on
+            names = {d.name: d for d in drivers}
+            target = self.name(self.get(value, path, "on"), path + ("on",), set(names),
+                               "driver")
+            driver = names[target]
         elif "on" in value:
             raise self.error(path + ("on",), "the driver load acts on the driver coordinate")
         driver_unit = "torque" if driver is None or driver.kind == "angle" else "force"
@@ -228,3 +269,4 @@ class LoadsSection:
         frame = data["frame"]
         z = self.xy(frame[q], ("frame", q), units) - self.xy(frame[p], ("frame", p), units)
         return z / abs(z)
+

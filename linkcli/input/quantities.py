@@ -24,6 +24,7 @@ import dataclasses
 from linkcli.model.mechanism import LIMITS, VIBRATION, Quantity
 from linkcli.model.units import ANGLE, FORCE, LENGTH, TORQUE
 from linkcli.input.derived import EXPR
+from linkcli.input.gears import GEARING
 from linkcli.input.oscillation import OSCILLATION
 from linkcli.input.efficiency import EFFICIENCY
 
@@ -85,12 +86,23 @@ def kind_text(kind: str) -> str:
 class QuantitiesSection:
     """``quantities`` (a mixin of the Parser)."""
 
-    def quantities(self, data, pool, loads, driver) -> dict:
+    def quantities(self, data, pool, loads, driver, drivers=()) -> dict:
+        """Every quantity of the file: q (the first driver), xP and yP of each point, each
+        load, each of ``drivers`` (its coordinate: an angle, a length, an x or y) by its
+        name, then the file's ``quantities:``."""
         spec = self.mapping(self.get(data, (), "quantities", required=False, default={}) or {},
                             ("quantities",))
         quantities = {"q": Quantity("q", "q")}
         names = _Names()
         names.claim("q", RATES, "the driver's coordinate", "q")
+        for d in drivers:
+            if d.kind in "xy" and d.name == d.kind + d.a:
+                continue            # the automatic xP itself
+            if names.claim(d.name, RATES, f"the driver {d.name}", f"driver '{d.name}'"):
+                self.error(("drivers", d.name), f"the driver's name '{d.name}' is taken by the "
+                           "first driver's coordinate 'q' or its rates",
+                           hint="call it another name")
+            quantities[d.name] = Quantity(d.name, d.kind, d.a, d.b)
         for p in sorted(pool, key=lambda p: (len(p), p)):   # 'B' before 'Bd'
             path = next(((s, p) for s in ("frame", "points") if (s, p) in self.doc.lines),
                         ("points",))
@@ -151,6 +163,8 @@ class QuantitiesSection:
             return self.clutch_quantity(name, value, path)
         if isinstance(value, dict) and any(k in value for k in EFFICIENCY):
             return self.efficiency_quantity(name, value, path, loads)
+        if isinstance(value, dict) and any(k in value for k in GEARING):
+            return self.gear_quantity(name, value, path)
         value = self.mapping(value, path, set(GEOMETRY) | {"component", "unit", "point",
                                                            "signed", "axis"})
         kinds = [k for k in GEOMETRY if k in value]

@@ -197,7 +197,7 @@ class _Decomposer(ContactGroups):
     # one step ------------------------------------------------------------------
     def step(self) -> bool:
         return self.drivers() or self.place() or self.dyad() or self.rpr() or \
-            self.yoke() or self.actuator() or self.roll()
+            self.yoke() or self.actuator() or self.roll() or self.roll_together()
 
     def place(self) -> bool:
         for body in self.mech.bodies.values():

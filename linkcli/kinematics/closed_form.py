@@ -241,6 +241,12 @@ class Solver:
         return g1, g2, r1, r2, solved
 
     # failures ------------------------------------------------------------------
+    def _where(self, kin: Kinematics):
+        """The driver values a refusal names: q, or every driver's (a tuple) when the file
+        has several."""
+        several = self.n > 1 and self.mech.elements is None
+        return tuple(kin.coords) if several else kin.q
+
     def check(self, kin: Kinematics, velocities: bool):
         """Raise when a group cannot be assembled or (for rates) is singular."""
         for index, short in kin.short.items():
@@ -252,15 +258,27 @@ class Solver:
                 worst = float(np.max(np.where(bad, short, 0.0)))
                 reason = "the links are parallel" if not np.isfinite(worst) else \
                     f"the links fall short by {length_text(self.mech, worst)}"
-                raise assembly_error(self.mech, self.groups[index], kin.q, bad, worst, reason)
+                raise assembly_error(self.mech, self.groups[index], self._where(kin), bad,
+                                     worst, reason)
         if not velocities:
             return
         for index, measure in kin.measure.items():
             if under(measure, SINGULAR):
                 bad = measure < SINGULAR
-                raise singular_error(self.mech, self.groups[index], kin.q,
+                raise singular_error(self.mech, self.groups[index], self._where(kin),
                                      np.broadcast_to(bad, kin.shape), measure,
                                      "sine of the angle between its constraint directions")
+
+
+def unit_rates(solver, kin: Kinematics, j: int = 0) -> Kinematics:
+    """The velocities at ``kin``'s positions for a unit rate of coordinate ``j`` and the
+    others at rest: dP/dq_j, the virtual-power coefficients of driver j (any solver)."""
+    one = np.ones(kin.shape)
+    n = len(solver.mech.coordinates)
+    if n == 1:
+        return solver.velocities(kin.at_rest(), one)
+    return solver.velocities(kin.at_rest(), tuple(one if i == j else 0.0 * one
+                                                  for i in range(n)))
 
 
 def _guide_of(c, pos, q, turns=None):

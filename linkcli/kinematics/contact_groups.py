@@ -49,6 +49,49 @@ class ContactGroups:
             return True
         return False
 
+    def roll_together(self) -> bool:
+        """A disc turned by two contacts that share another unknown turn (a planet in mesh
+        with a sun and a ring, its arm's turn unknown): their weighted sum without the
+        shared turn leaves only the disc's (``combined_turn``); a ``roll`` group places it,
+        one of the two is spent, and the other then turns the shared disc."""
+        open_ = [(n, r) for n, r in self.relations.items() if n not in self.consumed]
+        for (n1, r1), (n2, r2) in combinations(open_, 2):
+            found = self.combined_turn(r1, r2)
+            if found is None:
+                continue
+            rel, turn, body = found
+            self.groups.append(Group("roll", turn.b, (rel, turn), (body.name,),
+                                     note=contact_text(self.mech, n1, body.name) + " and " +
+                                     contact_text(self.mech, n2, body.name)))
+            self.consumed.add(n1)
+            self.known.add(turn.b)
+            self.settle(body, [turn.a, turn.b])
+            return True
+        return False
+
+    def combined_turn(self, r1, r2):
+        """(relation, turn, body) where ``r1`` and ``r2`` leave unknown the same two turns
+        and nothing else, one of which places a link (``turned_body``): the combination
+        lambda_1 r1 + lambda_2 r2 without the other turn; None otherwise."""
+        turns = self.unknown_turns(r1)
+        if len(turns) != 2 or set(turns) != set(self.unknown_turns(r2)) or \
+                any(not isinstance(t, Turn) and not self.term_known(t)
+                    for r in (r1, r2) for t, _, _ in r.terms):
+            return None
+        for turn, other in (turns, turns[::-1]):
+            body = self.turned_body(turn)
+            if body is None:
+                continue
+            c1, c2 = r1.coefficient(other), r2.coefficient(other)
+            rel = Relation.combine([(r1, c2), (r2, -c1)], (other,))
+            scale = max(abs(c1), abs(c2)) * max(abs(r1.coefficient(turn)),
+                                                abs(r2.coefficient(turn)))
+            if abs(rel.coefficient(turn)) <= 1e-9 * scale:
+                continue            # the two contacts say the same of this turn
+            mine = next(t for t, _, _ in rel.terms if t == turn)
+            return rel, mine, body
+        return None
+
     def term_known(self, term) -> bool:
         """Whether a measure of a contact is known: its points are placed, or it is a turn
         an angle coordinate gives."""

@@ -3,8 +3,8 @@
 n = 3 (m - 1) - 2 R - 2 P - H with m bodies (frame included), R revolute pairs (at a point
 shared by j bodies there are j - 1), P prismatic pairs (one per slider block, one per
 actuator) and H higher pairs (a disc rolling without slipping, a taut cord on a pulley).
-A mechanism whose n is not its number of coordinates (1 for a file with a ``driver:``) is
-refused, naming a belt strand that repeats another's relation when that is the cause.
+A mechanism whose n is not its number of coordinates (1 for a file with a ``driver:``, one
+per input of ``drivers:``) is refused, naming a belt strand that repeats another's relation when that is the cause.
 """
 from __future__ import annotations
 
@@ -85,10 +85,10 @@ def repeated_strands(mech: Mechanism) -> list:
     return out
 
 
-#: what to do with a mechanism of several inputs, which one 'driver:' cannot move
-SEVERAL_DRIVERS = ("one driver is supported, not several: hold all inputs but one (their "
-                   "points in 'frame:', what rolls on them rolling on the frame) and solve "
-                   "once per input; the velocities add, being linear in the input rates")
+#: what to do with a mechanism of several inputs, each driven
+SEVERAL_DRIVERS = ("declare one driver per input under 'drivers:', each with its value, "
+                   "rate and accel, e.g. drivers: {theta1: {angle: [O, A], value: 30, rate: 2}, "
+                   "theta2: {angle: [C, B], value: 60, rate: -1}}")
 
 
 def one_dof(mech: Mechanism) -> Grubler:
@@ -98,9 +98,12 @@ def one_dof(mech: Mechanism) -> Grubler:
     n = len(mech.coordinates)
     if count.dof == n:
         return count
-    driven = mech.elements is None          # a file with a 'driver:', not 'coordinates:'
-    declared = f"1 (the one driver, {driver_text(mech.driver)})" if driven else "1" if n == 1 \
-        else f"{n} (the coordinates {', '.join(c.name for c in mech.coordinates)})"
+    driven = mech.elements is None          # a file with drivers, not 'coordinates:'
+    declared = f"1 (the one driver, {driver_text(mech.driver)})" if driven and n == 1 \
+        else "1" if n == 1 else \
+        f"{n} (the {'drivers' if driven else 'coordinates'} " + \
+        ", ".join(f"{c.name}: {driver_text(c)}" if driven else c.name
+                  for c in mech.coordinates) + ")"
     repeats = repeated_strands(mech)
     if repeats and count.dof + len(repeats) == n:
         strand, first = repeats[0]
@@ -117,14 +120,18 @@ def one_dof(mech: Mechanism) -> Grubler:
         "several bodies name the same point"
     if count.dof > n and driven:
         hint += f"; if the mechanism has {count.dof} inputs: {SEVERAL_DRIVERS}"
+    elif count.dof < n and driven and count.dof >= 1:
+        hint = f"the mechanism takes {count.dof} input{'s' if count.dof > 1 else ''}: " \
+            f"drive {count.dof} of the coordinates and ask for the others as quantities; " \
+            "or check that every link, slider and actuator is listed"
     elif count.dof > n:
         hint += "; a vibration problem declares one coordinate per degree of freedom under " \
             "'coordinates:'"
-    raise MobilityError(f"the mechanism has {count.dof} degrees of freedom, not {declared}: "
+    raise MobilityError(f"the mechanism has {count.dof} degree{'' if count.dof == 1 else 's'} "
+                        f"of freedom, not {declared}: "
                         f"{count.formula()}", file=mech.file, hint=hint)
 
 
 def driver_text(d) -> str:
     """The driver (or a coordinate) in words: 'angle of A->B', 'length AB', 'x of B'."""
-    return {"angle": f"angle of {d.a}->{d.b}", "length": f"length {d.a}{d.b}",
-            "x": f"x of {d.a}", "y": f"y of {d.a}"}[d.kind]
+    return d.words

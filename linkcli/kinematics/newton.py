@@ -54,6 +54,12 @@ class NewtonSolver(Corrector):
                              hint="it is relative to the mechanism's size, e.g. 1e-12")
         self.mech = mech
         one_dof(mech)
+        if len(mech.coordinates) > 1:
+            raise InputError(f"--method newton solves a mechanism of one driver; this one has "
+                             f"{len(mech.coordinates)} ("
+                             + ", ".join(c.name for c in mech.coordinates) + ")",
+                             file=mech.file, key="--method",
+                             hint="solve it by the closed form (the default method)")
         system = Constraints(mech)
         size = _size(mech, system.shortest)
         super().__init__(system, tol, size, system.shortest or size)

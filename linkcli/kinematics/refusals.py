@@ -42,7 +42,20 @@ def length_text(mech, value) -> str:
 
 
 def where_text(mech, q, bad) -> str:
-    """'at q = ...' or 'for q in [...]': the driver values ``bad`` in display units."""
+    """'at q = ...' or 'for q in [...]': the driver values ``bad`` in display units; with
+    several drivers (``q`` a tuple of their values) each by its name."""
+    if isinstance(q, tuple):
+        bad = np.broadcast_to(bad, np.broadcast_shapes(np.shape(bad), *map(np.shape, q)))
+        parts = []
+        for c, x in zip(mech.coordinates, q):
+            unit, factor = mech.units.display(c.base, 0)
+            values = np.broadcast_to(x, bad.shape)[bad] / factor if bad.any() else \
+                np.atleast_1d(np.asarray(x, float).flat[0] / factor)
+            parts.append(f"{c.name} = {values[0]:.6g} {unit}" if values.min() == values.max()
+                         else f"{c.name} in [{values.min():.6g}, {values.max():.6g}] {unit}")
+        count = int(np.count_nonzero(bad))
+        return ("at " if count <= 1 else "for ") + ", ".join(parts) + \
+            (f" ({count} positions)" if count > 1 else "")
     unit, factor = mech.units.display(_driver_base(mech), 0)
     return _q_text(q, bad, factor, unit)
 

@@ -15,7 +15,7 @@ from collections import OrderedDict
 import numpy as np
 
 from linkcli.errors import InputError, StructureError
-from linkcli.kinematics.closed_form import Solver
+from linkcli.kinematics.closed_form import Solver, unit_rates
 
 METHODS = ("closed", "newton")
 KEPT = 64
@@ -74,16 +74,20 @@ def _closed(mech):
 def state(mech, q=None, method="closed", tol=None):
     """(kin, unit) at driver value(s) ``q`` (SI; default the file's): ``kin`` solved to the
     accelerations with the file's qdot and qddot, ``unit`` the velocities for qdot = 1 (the
-    virtual-power coefficients)."""
+    virtual-power coefficients; with several drivers, ``q`` is the first's and ``unit`` its
+    unit rate, the others at rest)."""
     solver = solver_for(mech, method, tol)
-    d = mech.driver
-    q = d.value if q is None else q
+    own, rate, accel = mech.inputs
+    if q is None:
+        q = own
+    elif len(mech.coordinates) > 1:   # several drivers: q the first's, the others the file's
+        q = (q,) + tuple(c.value + 0 * np.asarray(q, float) for c in mech.coordinates[1:])
     kin = solver.positions(q)
     solver.check(kin, velocities=False)
-    solver.velocities(kin, d.rate)
+    solver.velocities(kin, rate)
     solver.check(kin, velocities=True)
-    solver.accelerations(kin, d.accel)
-    unit = solver.velocities(kin.at_rest(), np.ones_like(kin.q))
+    solver.accelerations(kin, accel)
+    unit = unit_rates(solver, kin)
     return kin, unit
 
 

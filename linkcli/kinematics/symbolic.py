@@ -516,6 +516,9 @@ class Closures:
                 text += " (in place of " + ", ".join(
                     c.name for c in self.named if c not in self.mech.coordinates) + \
                     ", which places no point)"
+            if pivot not in self.pos:   # a pivot that a contact's relation placed
+                return Closure(text, missing=f"its pivot {pivot} is placed by a contact's "
+                               "relation, whose closure is not written (see its numbers)")
             q, sign = self._angle_symbol(d.a, d.b)
             L = self._length(crank, d.a, d.b)
             other = d.b if pivot == d.a else d.a

@@ -72,8 +72,10 @@ def of_quantity(mech, quantity) -> Dimension:
         return dimension(mech, quantity.a)
     if kind in ("at_maximum", "at_minimum"):
         return base_dimension(mech.driver.base)
-    if kind == "time_ratio":
+    if kind in ("time_ratio", "contact_ratio", "min_teeth"):
         return NONE
+    if kind == "centre_distance":
+        return LENGTH_DIM
     if kind == "stroke_time":
         return TIME_DIM
     if kind == "expr":

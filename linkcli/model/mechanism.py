@@ -111,11 +111,13 @@ class Rolling:
 
 @dataclass(frozen=True)
 class Driver:
-    """An independent coordinate: the driver q of a 1-DOF file, or one of ``coordinates``.
+    """An independent coordinate: the driver q of a 1-DOF file, one of ``drivers`` (a
+    mechanism of several degrees of freedom, each input driven) or one of ``coordinates``.
 
     kind 'angle': q is the angle of the vector a->b; 'length': q = |b - a|;
     'x' / 'y': q is that coordinate of point ``a``.  ``value`` is the
-    figure's; ``rate`` and ``accel`` are the driver's (0 for coordinates).
+    figure's; ``rate`` and ``accel`` are the driver's (0 for coordinates); ``name`` is 'q'
+    for ``driver:``, the file's name of it otherwise.
     """
 
     kind: str
@@ -131,15 +133,30 @@ class Driver:
         """'angle' or 'length': the kind of unit q is measured in."""
         return "angle" if self.kind == "angle" else "length"
 
+    @property
+    def words(self) -> str:
+        """What it drives, in words: 'angle of A->B', 'length AB', 'x of B'."""
+        return {"angle": f"angle of {self.a}->{self.b}", "length": f"length {self.a}{self.b}",
+                "x": f"x of {self.a}", "y": f"y of {self.a}"}[self.kind]
+
+    def same_coordinate(self, other: "Driver") -> bool:
+        """Whether ``other`` measures the same coordinate: the same kind of the same point,
+        or of the same two points (either way round)."""
+        if self.kind != other.kind:
+            return False
+        return self.a == other.a if self.b is None else {self.a, self.b} == {other.a, other.b}
+
 
 @dataclass(frozen=True)
 class Load:
-    """An external load.  ``value`` is None for the one unknown load.
+    """An external load.  ``value`` is None for the one unknown load (one per driver with
+    several drivers).
 
     kind 'force': at point ``target`` along unit direction ``direction``
     (complex), magnitude ``value`` (N); 'torque': on body ``target`` (N m,
     counter-clockwise); 'axial': on actuator ``target`` (N, > 0 pushes the
-    ends apart); 'driver': generalised force on q (N or N m).  A pressure load is
+    ends apart); 'driver': generalised force on q (N or N m), with several drivers on
+    the driver named ``target``.  A pressure load is
     the force or axial load p A, with ``pressure`` = (p in Pa, A in m^2, the bore D
     in m or None) as the problem states them.
     """
@@ -292,11 +309,16 @@ class AnswerKey:
 @dataclass(frozen=True)
 class Quiz:
     """How a Moodle quiz scores the file: ``points`` per report section (the exams'
-    9/9/2; None: one point per answer box) and the answers' absolute ``tolerance`` in
-    display units (None: half a unit of the last printed decimal)."""
+    9/9/2; None: one point per answer box), the answers' absolute ``tolerance`` in
+    display units (None: half a unit of the last printed decimal), whether it asks the
+    values the question gives (``ask_given``; false as ``export --no-given``) and the
+    report's names it does not ask (``not_asked``: printed by solve and checked against
+    the key, but not asked by the statement)."""
 
     points: dict | None = None
     tolerance: float | None = None
+    ask_given: bool = True
+    not_asked: tuple = ()
 
 
 @dataclass(eq=False)
@@ -334,6 +356,8 @@ class Mechanism:
     source: object = None
     #: a design question (``find:``, model.design.Design), None when absent
     design: object = None
+    #: name -> model.gears.Gear: the gears given by their teeth (``gears:``)
+    gears: dict = field(default_factory=dict)
     #: a clutch problem's shafts and clutch (``shafts:``, model.clutch.ClutchProblem): then
     #: there is no linkage, and no driver
     clutch: object = None
@@ -354,6 +378,15 @@ class Mechanism:
         figure = {**self.fixed, **self.moving}
         return [figure[p] for p in self.points]
 
+    @property
+    def inputs(self) -> tuple:
+        """(values, rates, accelerations) of the file's own position as the solvers take
+        them: numbers for one driver (or coordinate), tuples over them for several."""
+        cs = self.coordinates
+        if len(cs) == 1:
+            return cs[0].value, cs[0].rate, cs[0].accel
+        return tuple(tuple(getattr(c, a) for c in cs) for a in ("value", "rate", "accel"))
+
     def unknown_load(self) -> Load:
         load = next((load for load in self.loads.values() if load.value is None), None)
         if load is None:
@@ -362,9 +395,16 @@ class Mechanism:
                              hint="give one load, usually the driver's, the value 'unknown'")
         return load
 
+    def unknown_loads(self) -> list:
+        """The unknown loads, one per driver of a mechanism of several drivers."""
+        return [load for load in self.loads.values() if load.value is None]
+
     def load_unit_kind(self, load: Load) -> str:
-        """'torque' for a torque or the driver load of an angle driver, else 'force'."""
-        if load.kind == "torque" or load.kind == "driver" and self.driver.kind == "angle":
+        """'torque' for a torque or the driver load of an angle driver (the driver it acts
+        on, ``target``, with several drivers), else 'force'."""
+        driver = next((c for c in self.coordinates if c.name == load.target), self.driver) \
+            if load.kind == "driver" else None
+        if load.kind == "torque" or driver is not None and driver.kind == "angle":
             return "torque"
         return "force"
 

@@ -165,18 +165,25 @@ def _load_text(w, load) -> str:
 
 # --- the driver and the coordinates --------------------------------------------------------------
 def _driver(ax, scene, w):
-    """The driver's value and the sense of its rate: an angle from +x with a curved arrow,
-    a length or a coordinate with a straight one."""
+    """Each driver's value and the sense of its rate (``_one_driver``): q for one driver,
+    each by its name for several."""
+    drivers = scene.mech.coordinates
+    for d in drivers:
+        _one_driver(ax, scene, w, d, "q" if len(drivers) == 1 else d.name)
+
+
+def _one_driver(ax, scene, w, d, q):
+    """The driver ``d`` (called ``q``): an angle from +x with a curved arrow, a length or a
+    coordinate with a straight one."""
     mech = scene.mech
-    d = mech.driver
     rate_unit, rate_f = mech.units.display(d.base, 1)
-    rate = f"q' = {w.num(abs(d.rate) / rate_f)} {rate_unit}" if d.rate else ""
+    rate = f"{q}' = {w.num(abs(d.rate) / rate_f)} {rate_unit}" if d.rate else ""
     if d.kind == "angle":
-        _angle_mark(ax, scene, d, f"q = {w.angle(d.value)}", fontsize=9)
+        _angle_mark(ax, scene, d, f"{q} = {w.angle(d.value)}", fontsize=9)
         if d.rate:
             _spin(ax, scene, scene.p[d.b], d.rate > 0, rate)
         return
-    value = f"q = {w.length(d.value)}"
+    value = f"{q} = {w.length(d.value)}"
     if d.kind == "length":
         a, b = scene.p[d.a], scene.p[d.b]
         u = (b - a) / abs(b - a)

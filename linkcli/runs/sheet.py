@@ -6,6 +6,8 @@ a vibration problem, declared with coordinates, at its static equilibrium
 """
 from __future__ import annotations
 
+import weakref
+
 import numpy as np
 
 from linkcli.answers import quantities
@@ -22,11 +24,8 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
     refuse_driving(mech, q, qdot, qddot, method)
     if design.unsolved(mech):       # each trial by the method asked
         mech = design.resolved(mech, evaluate, method, tol)
-    names = list(names) if names is not None else quantities.report_names(mech)
-    solve, exprs = expressions.expand(mech, names)
-    solved = [n for n in solve if _kind(mech, n) == "design"]
-    result = _evaluate(mech, q, qdot, qddot, [n for n in solve if n not in solved], method,
-                       tol)
+    names, solve, exprs, solved, limits = route(mech, names)
+    result = _evaluate(mech, q, qdot, qddot, solve, method, tol, limits)
     for name in solved:         # a solved parameter: the value the file was built with
         value, result.units[name] = design.answer(mech, name)
         shape = np.shape(getattr(result.kinematics, "q", None)) if q is not None else ()
@@ -38,18 +37,41 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
     return result
 
 
+_ROUTES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def route(mech, names) -> tuple:
+    """(names, the names to solve, the expressions, the solved design parameters, whether a
+    limit of the motion is asked) of ``names`` (default: the report's) on ``mech``, worked
+    out at the first call and kept with the mechanism, like its plans."""
+    key = None if names is None else tuple(names)
+    routes = _ROUTES.get(mech)
+    if routes is None:
+        routes = _ROUTES[mech] = {}
+    route = routes.get(key)
+    if route is None:
+        names = list(names) if names is not None else quantities.report_names(mech)
+        solve, exprs = expressions.expand(mech, names)
+        solved = [n for n in solve if _kind(mech, n) == "design"]
+        solve = [n for n in solve if n not in solved]
+        limits = mech.elements is None and _asks_limits(mech, solve)
+        route = routes[key] = (names, solve, exprs, solved, limits)
+    return route
+
+
 def _kind(mech, name):
     quantity = mech.quantities.get(name)
     return quantity.kind if quantity is not None else None
 
 
-def _evaluate(mech, q, qdot, qddot, names, method, tol) -> Result:
-    """``names`` (none an expression) by the path they need."""
+def _evaluate(mech, q, qdot, qddot, names, method, tol, limits) -> Result:
+    """``names`` (none an expression) by the path they need (``limits``: one is a limit of
+    the motion)."""
     if mech.clutch is not None:     # shafts and a clutch: their transient
         from linkcli.runs import clutch_sheet
         return clutch_sheet.evaluate(mech, list(names), Result(mech))
     if mech.elements is None:       # a file with a driver: no vibration modules to import
-        if _asks_limits(mech, names):   # maxima, strokes ...: runs.limits
+        if limits:                      # maxima, strokes ...: runs.limits
             from linkcli.runs.limits import report as limit_report
             return limit_report.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)
         return quantities.evaluate(mech, q, qdot, qddot, names=names, method=method, tol=tol)

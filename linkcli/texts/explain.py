@@ -98,12 +98,29 @@ def _closed_form_reach(mech) -> str:
 
 
 def _statics_terms(mech) -> list:
+    """sum L v = 0 in words; with several drivers once per driver's motion (the others at
+    rest), a driver's own load working on its driver only."""
+    several = len(mech.coordinates) > 1 and mech.elements is None
+    if not mech.loads:
+        return ["  (no loads)"]
+    if not several:
+        return ["  " + _power_sum(mech, None) + " = 0"]
+    return [f"  motion of {d.name} alone: " + _power_sum(mech, d.name) + " = 0"
+            for d in mech.coordinates]
+
+
+def _power_sum(mech, driver) -> str:
+    """' + '-joined L * v terms of the loads for the motion of ``driver`` (None: q's)."""
     terms = []
     for load in mech.loads.values():
+        if load.kind == "driver" and driver is not None:
+            if load.target == driver:
+                terms.append(f"{load.name} * {driver}dot")
+            continue
         target = {"force": f"v_{load.target}", "torque": f"omega_{load.target}",
                   "axial": f"d|{load.target}|/dt", "driver": "qdot"}[load.kind]
         terms.append(f"{load.name} * {target}")
-    return ["  " + " + ".join(terms) + " = 0" if terms else "  (no loads)"]
+    return " + ".join(terms)
 
 
 def _turns(mech, carrier: str) -> bool:

@@ -90,8 +90,8 @@ RULES = [(re.compile(pattern), italian) for pattern, italian in (
     (r"\bguid[ae] through: ([^,]+), angle: (\S+)", r"guida per \1 ad angolo \2"),
     (r"\bguid[ae] along: ", "guida lungo "),
     (r"\bguide (?=\S*:)", "guida "),
-    (r"\bcontacts (\S+)", r"contatti \1"),
-    (r"\bcontact (\S+)", r"contatto \1"),
+    (r"(?:(?<= da )|(?<= and ))contacts (?=\S)", "contatti "),     # a dyad's side
+    (r"(?:(?<= da )|(?<= and ))contact (?=\S)", "contatto "),
     (r" \(driven\)", " (comandata dal movente)"),
     (r"\(branch ([+-]) as in the figure\)", r"(ramo \1 come in figura)"),
     (r"\(branch ([+-]) not determined by the figure\)",

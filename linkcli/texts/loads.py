@@ -31,24 +31,35 @@ def _coordinate_value(w, d) -> str:
 
 
 def _motion(w) -> list:
+    """The driver's line; with several drivers, a line for each by its name."""
     mech = w.mech
     if mech.elements is not None:
         return _coordinates(w)
-    d = mech.driver
+    if len(mech.coordinates) == 1:
+        return [_driver_line(w, mech.driver, "q")]
+    return [_driver_line(w, d, d.name) for d in mech.coordinates]
+
+
+def _driver_line(w, d, name) -> str:
+    """'driver: q = angle of O->A = 30 deg, q' = 2 rad/s (counter-clockwise), q'' = ...',
+    the driver called ``name``."""
+    mech = w.mech
     base = d.base
     rate_unit, rate_f = w.units.display(base, 1)
     acc_unit, acc_f = w.units.display(base, 2)
-    text = w.w["driver"].format(what=_what(w, d), value=_coordinate_value(w, d))
+    text = w.w["driver"].format(q=name, what=_what(w, d), value=_coordinate_value(w, d))
     sense = ""
     if d.rate:
         words = ("ccw", "cw") if d.kind == "angle" else ("longer", "shorter") \
             if d.kind == "length" else (None, None)
         word = words[0] if d.rate > 0 else words[1]
         sense = f" ({w.w[word]})" if word else ""
-    text += ", " + w.w["rate"].format(rate=f"{w.num(d.rate / rate_f)} {rate_unit}") + sense
+    text += ", " + w.w["rate"].format(q=name, rate=f"{w.num(d.rate / rate_f)} {rate_unit}") \
+        + sense
     if d.accel or mech.report.get("acceleration") or mech.dynamics is not None:
-        text += ", " + w.w["accel"].format(accel=f"{w.num(d.accel / acc_f)} {acc_unit}")
-    return [text]
+        text += ", " + w.w["accel"].format(q=name,
+                                           accel=f"{w.num(d.accel / acc_f)} {acc_unit}")
+    return text
 
 
 def _coordinates(w) -> list:
@@ -85,13 +96,14 @@ def _load(w, load) -> str:
         key = "unknown_axial" if load.value is None else "axial"
         value = None if load.value is None else w.amount(load.value, "force")
         return w.w[key].format(name=load.name, value=value, on=load.target)
-    d = mech.driver
+    d = next((c for c in mech.coordinates if c.name == load.target), mech.driver)
+    q = "q" if len(mech.coordinates) == 1 else d.name     # several drivers: the one it is on
     what = w.w["q_torque"] if d.kind == "angle" else w.w["q_actuator"] \
-        if d.kind == "length" and _actuator_of(mech, d) else w.w["q_force"]
+        if d.kind == "length" and _actuator_of(mech, d) else w.w["q_force"].format(q=q)
     if load.value is None:
-        return w.w["driver_load"].format(name=load.name, what=what)
+        return w.w["driver_load"].format(name=load.name, what=what, q=q)
     return w.w["driver_load_known"].format(
-        name=load.name, what=what, value=w.amount(load.value, mech.load_unit_kind(load)))
+        name=load.name, what=what, q=q, value=w.amount(load.value, mech.load_unit_kind(load)))
 
 
 def _actuator_of(mech, d) -> bool:

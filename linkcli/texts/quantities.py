@@ -97,6 +97,15 @@ _DESCRIBE = {
     "least_speed_at": _geometry("distance from {a} of the point of line {a}{b} of least speed",
                                 "distanza da {a} del punto della retta {a}{b} di minima "
                                 "velocità"),
+    "centre_distance": _geometry("centre distance of gears {a} and {b}",
+                                 "interasse delle ruote {a} e {b}"),
+    "contact_ratio": _geometry("contact ratio of gears {a} and {b}",
+                               "rapporto di condotta delle ruote {a} e {b}"),
+    "min_teeth": lambda w, q: _geometry(
+        "fewest teeth of {a} without interference with {b}" if q.b else
+        "fewest teeth of {a} without interference with a rack",
+        "minimo numero di denti di {a} senza interferenza con {b}" if q.b else
+        "minimo numero di denti di {a} senza interferenza con una dentiera")(w, q),
     "maximum": _limit_text, "minimum": _limit_text, "at_maximum": _limit_text,
     "at_minimum": _limit_text, "stroke": _limit_text, "time_ratio": _limit_text,
     "stroke_time": _limit_text,

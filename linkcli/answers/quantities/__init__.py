@@ -4,6 +4,7 @@ A newcomer finds each part by its name:
 
 - ``plan``: the evaluation plan of a list of names (built once per mechanism), the
   :class:`Result`, ``evaluate`` and ``collect``;
+- ``drive``: several drivers moved from the first (held, or tied by an expression);
 - ``rows``: angles, lengths and coordinates written straight into the plan's table;
 - ``geometry``: angles, lengths and coordinates of the kinematics and their rates;
 - ``textbook``: speeds, accelerations, projections, rotations, instant centres, ratios;

@@ -10,6 +10,7 @@ import numpy as np
 from linkcli.answers.quantities.textbook import located
 from linkcli.errors import InputError
 from linkcli.forces import motion
+from linkcli.kinematics.closed_form import unit_rates
 from linkcli.kinematics.refusals import where_text
 from linkcli.forces.statics import unknown_load
 from linkcli.model.mechanism import split_rate
@@ -27,7 +28,10 @@ def loads_at(mech, solver, kin, names, context=None):
     values = {n: load.value for n, load in mech.loads.items()}
     if mech.elements is not None:   # a vibration problem: every load known (input.loads)
         return values
-    unit_kin = solver.velocities(kin.at_rest(), np.ones_like(kin.q))
+    if len(mech.coordinates) > 1:   # one unknown per driver, by each driver's motion
+        values.update(_unknowns_of_drivers(mech, solver, kin))
+        return values
+    unit_kin = unit_rates(solver, kin)
     unknown = mech.unknown_load()
     extra = 0.0
     if mech.dynamics is not None:   # inertia, gravity, friction (d'Alembert)
@@ -131,3 +135,20 @@ def axis_direction(mech, axis, pos, body):
             name = body if body.startswith(name + ".") else name + ".cylinder"
         z = motion.axis_vector(mech, name, pos)
     return z / np.abs(z)
+
+
+def _unknowns_of_drivers(mech, solver, kin) -> dict:
+    """The unknown loads of several drivers (``forces.inputs``): each driver's unit motion,
+    with the d'Alembert forces' power where the file has masses (no friction losses)."""
+    from linkcli.forces.inputs import unknown_loads
+    units = [unit_rates(solver, kin, j) for j in range(len(mech.coordinates))]
+    extra = None
+    if mech.dynamics is not None:
+        from linkcli.forces.balance import dynamic_power
+        from linkcli.forces.friction import has_losses
+        if has_losses(mech.dynamics):
+            raise InputError("friction losses with several drivers are not solved: the "
+                             "joint forces they need take one unknown load", file=mech.file,
+                             key="dynamics", hint="leave friction out, or drive one input")
+        extra = [dynamic_power(mech, kin, unit) for unit in units]
+    return unknown_loads(mech, kin.pos, [u.vel for u in units], extra, q=tuple(kin.coords))

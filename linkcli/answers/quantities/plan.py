@@ -11,6 +11,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from linkcli.answers.memory import LONG, keep_freed_memory
+from linkcli.answers.quantities.gearing import gear_value
+from linkcli.answers.quantities.drive import Drive
 from linkcli.answers.quantities.forces import JOINT_FORCES, force_value, loads_at
 from linkcli.answers.quantities.geometry import override_unit, signed_angle, vector, \
     wrap_angle
@@ -20,8 +22,10 @@ from linkcli.input.efficiency import EFFICIENCY
 from linkcli.errors import InputError, LinkcliError, SolveError
 from linkcli.kinematics.compiled import X as X_PROBE, Y as Y_PROBE, compiled, program_of
 from linkcli.kinematics.solvers import solver_for
+from linkcli.kinematics.straight import straight_of
 from linkcli.model.mechanism import REPORT_SECTIONS, VIBRATION, split_rate
 from linkcli.input.quantities import LEVEL
+from linkcli.input.gears import GEARING
 from linkcli.model.units import FORCE, TORQUE
 
 #: a long array of driver values is solved this many positions at a time (see Plan._in_blocks)
@@ -105,7 +109,7 @@ def report_names(mech):
 
 def require_driver(mech, what: str) -> None:
     """Refuse a request that varies the driver on a file declared with coordinates."""
-    if mech.elements is not None or len(mech.coordinates) > 1:
+    if mech.elements is not None:
         raise InputError(f"{what} varies the driver, and this file declares coordinates "
                          "(a vibration problem) instead", file=mech.file,
                          hint="use 'linkcli solve', 'linkcli sweep --vary NAME=FROM:TO:STEPS' "
@@ -196,6 +200,8 @@ class Plan:
             self.probes += [(axis, p, None, 0, f, False) for p, _, f in self.points
                             for axis in (X_PROBE, Y_PROBE)]
         self._program = False           # (program, probes) built at the first compiled call
+        self._straight = False          # the straight-line solve (at the second call)
+        self._called = False
 
     def order(self, mech) -> int:
         """The highest order of rates the names need (checked at the first call)."""
@@ -208,15 +214,25 @@ class Plan:
         names need, refusing unassembled and singular positions, and evaluate them."""
         solver = solver_for(mech, self.method, self.tol)
         order = self.order(mech)
-        driver = self._driver_si(mech.driver, q, qdot, qddot)
-        if q is not None and self.probes is not None and np.size(q) <= COMPILED_MOST \
+        single = len(mech.coordinates) == 1      # several drivers: the general path
+        straight = self._straight_of(solver, order) if single else None
+        if straight is not None:
+            result = self._one_position(mech, solver, straight, q, qdot, qddot)
+            if result is not None:
+                return result
+        driver = self._driver_si(mech, q, qdot, qddot)
+        if single and q is not None and self.probes is not None and np.size(q) <= COMPILED_MOST \
                 and compiled() is not None:
             result = self._compiled(mech, solver, order, *driver)
             if result is not None:
                 return result
         if q is not None and np.size(q) >= LONG:
             keep_freed_memory()
-        if q is not None and np.size(q) > BLOCK and self._blockwise:
+        if straight is not None and q is not None:
+            result = self._straight_array(mech, solver, straight, *driver)
+            if result is not None:
+                return result
+        if single and q is not None and np.size(q) > BLOCK and self._blockwise:
             result = self._in_blocks(mech, solver, order, *driver)
             if result is not None:
                 return result
@@ -226,6 +242,53 @@ class Plan:
             result.cautions = figure_cautions(mech, self.method, self.tol) + result.cautions
         return result
 
+    def _straight_of(self, solver, order, now=False):
+        """The straight-line solve of these names (``kinematics.straight``), None where it
+        cannot express them; worked out at the second call (or ``now``): writing it costs
+        about a millisecond, the time of a few calls by the general path, which a file
+        solved once (a command, a trial of a design question, a value of a parameter
+        sweep) would not win back."""
+        if self._straight is False:
+            if not now and not self._called:
+                self._called = True
+                return None
+            self._straight = straight_of(solver, self.probes, order) \
+                if self.probes is not None and self.method == "closed" else None
+        return self._straight
+
+    def _one_position(self, mech, solver, straight, q, qdot, qddot):
+        """:meth:`evaluate` of one position (numbers) by the straight-line solve; None where
+        it is not one position or a check leaves it to the general path (which answers the
+        close cases and words the refusals)."""
+        driver = mech.driver
+        f0, f1, f2 = self.q_factors
+        try:
+            w = driver.rate if qdot is None else as_number(qdot, f1)
+            al = driver.accel if qddot is None else as_number(qddot, f2)
+            qs = driver.value if q is None else as_number(q, f0)
+            if qs is None or w is None or al is None:
+                return None
+            values = straight.scalar(qs, w, al)
+        except (ArithmeticError, ValueError, TypeError):    # a domain error, a division
+            return None                                     # by 0, no rate given
+        if values is None:
+            return None
+        result = self._tabled(mech, np.array(values), Later(solver, qs, w, al, straight.order))
+        if q is None:       # the file's own position: what the figure check says of it
+            from linkcli.kinematics.solvers import figure_cautions
+            result.cautions = figure_cautions(mech, self.method, self.tol)
+        return result
+
+    def _straight_array(self, mech, solver, straight, qs, w, al):
+        """:meth:`evaluate` of a 1-D array of at most BLOCK driver values (SI) by the
+        straight-line solve; None as :meth:`_one_position`."""
+        if qs.ndim != 1 or qs.size > BLOCK or not qs.size or w is None or al is None or \
+                any(np.ndim(x) and np.shape(x) != qs.shape for x in (w, al)):
+            return None
+        table = straight.array(qs, w, al)
+        return None if table is None else \
+            self._tabled(mech, table, Later(solver, qs, w, al, straight.order))
+
     @property
     def _blockwise(self) -> bool:
         """Whether every name is a kernel of the positions and rates alone (no loads, no
@@ -234,12 +297,16 @@ class Plan:
         return self.method == "closed" and not self.generic and not self.wants_loads \
             and not self.points
 
-    def _driver_si(self, driver, q, qdot, qddot) -> tuple:
-        """(q, q', q'') in SI from display units, the file's values where not given."""
+    def _driver_si(self, mech, q, qdot, qddot) -> tuple:
+        """(q, q', q'') in SI from display units, the file's values where not given.  With
+        several drivers each is a tuple over them: ``q`` and its rates are the first
+        driver's, the others' are the file's (``Drive``)."""
         f0, f1, f2 = self.q_factors
-        return (driver.value if q is None else np.asarray(q, float) * f0,
-                driver.rate if qdot is None else np.asarray(qdot, float) * f1,
-                driver.accel if qddot is None else np.asarray(qddot, float) * f2)
+        driver = mech.driver
+        first = (driver.value if q is None else np.asarray(q, float) * f0,
+                 driver.rate if qdot is None else np.asarray(qdot, float) * f1,
+                 driver.accel if qddot is None else np.asarray(qddot, float) * f2)
+        return Drive(mech)(*first)
 
     def _in_blocks(self, mech, solver, order, qs, qd, qdd):
         """:meth:`evaluate` of a long 1-D array of driver values, BLOCK positions at a time:
@@ -255,8 +322,16 @@ class Plan:
             return None
         table = np.empty((len(self.names), qs.size))
 
+        straight = self._straight_of(solver, order, now=True)
+
         def solve(lo):
             hi = min(qs.size, lo + BLOCK)
+            if straight is not None:
+                part = straight.array(qs[lo:hi], qd[lo:hi] if np.ndim(qd) else qd,
+                                      qdd[lo:hi] if np.ndim(qdd) else qdd)
+                if part is not None:
+                    table[:, lo:hi] = part[:len(self.names)]
+                    return
             part = solved(solver, order, qs[lo:hi], qd[lo:hi] if np.ndim(qd) else qd,
                            qdd[lo:hi] if np.ndim(qdd) else qdd)
             for kernel in self.kernels:
@@ -378,6 +453,16 @@ def solved(solver, order, q, qd, qdd):
     return kin
 
 
+def as_number(x, factor):
+    """``x`` times ``factor`` where ``x`` is one number (a float, an int, a 0-d array), else
+    None."""
+    if type(x) is float or type(x) is int:
+        return x * factor
+    if type(x) is np.ndarray and not x.ndim or isinstance(x, np.floating):
+        return float(x) * factor
+    return None
+
+
 def _collect_each(mech, solver, kin, names, result):
     """Every name evaluated on its own (coordinates whose arrays differ in shape)."""
     loads = loads_at(mech, solver, kin, names)
@@ -417,6 +502,8 @@ def value_of(mech, name, kin, loads, context=None):
         from linkcli.model.dimensions import param_unit_name
         value = float(mech.params[base_name])
         return value + 0 * np.asarray(kin.q, dtype=float), param_unit_name(mech, base_name)
+    if quantity.kind in GEARING:
+        return gear_value(mech, quantity, kin)
     if quantity.kind in JOINT_FORCES:
         return force_value(quantity, kin, context or Context(mech, None, kin))
     if quantity.kind in EFFICIENCY:

@@ -14,6 +14,7 @@ from linkcli.answers.quantities.geometry import override_unit, relative, signed_
 from linkcli.errors import SolveError
 from linkcli.forces import motion
 from linkcli.kinematics.branches import own_coordinates
+from linkcli.kinematics.closed_form import unit_rates
 from linkcli.kinematics.refusals import where_text
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import FRAME, Quantity
@@ -65,8 +66,7 @@ class Context:
 
     def unit(self):
         """The velocities for a unit driver rate (q' = 1) at the same positions."""
-        return self._once("unit", lambda: self._solver().velocities(
-            self.kin.at_rest(), np.ones_like(self.kin.q)))
+        return self._once("unit", lambda: unit_rates(self._solver(), self.kin))
 
     def figure(self) -> dict:
         """The positions of the figure: solved at the file's own driver value."""

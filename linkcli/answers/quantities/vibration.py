@@ -124,8 +124,8 @@ def evaluate(mech, names, result):
                              "solved at its static equilibrium: it has no driver rates",
                              file=mech.file, key="report",
                              hint="ask for amplitudes, frequencies or the free response; a "
-                             "mechanism moved at given input rates takes a 'driver:' instead: "
-                             + SEVERAL_DRIVERS)
+                             "mechanism moved at given input rates takes 'driver:' (one) "
+                             "or 'drivers:' instead of 'coordinates:': " + SEVERAL_DRIVERS)
     analysis = analyse(mech)
     geometric = [n for n in names if mech.quantities[n].kind not in VIBRATION]
     if geometric or mech.report.get("points"):

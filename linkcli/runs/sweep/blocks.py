@@ -24,6 +24,7 @@ import numpy as np
 
 from linkcli.answers.memory import LONG, keep_freed_memory
 from linkcli.answers.quantities import needed_orders, plan_for, require_driver
+from linkcli.answers.quantities.drive import Drive, Path
 from linkcli.errors import AtRestError, NoWorkError, AssemblyError, SelfLockingError, \
     SolveError
 from linkcli.kinematics.closed_form import Kinematics
@@ -91,10 +92,12 @@ class Sweeper:
     """
 
     def __init__(self, mech, q, names=None, method="closed", tol=None, qdot=None, qddot=None,
-                 block: int | None = None, quantities: bool = True):
+                 block: int | None = None, quantities: bool = True, ties=None):
         require_driver(mech, "a sweep")
         self.mech, self.method = mech, method
         self.solver = solver_for(mech, method, tol)
+        #: every driver from the first (the one swept): the others held or tied to it
+        self.drive = Drive(mech, ties)
         self.names = check_names(mech, names) if quantities else []
         self.quantities = quantities
         units = mech.units
@@ -130,7 +133,8 @@ class Sweeper:
             raise RuntimeError("a Sweeper is solved once")
         if min(self.size, self.block_size) >= LONG:
             keep_freed_memory()
-        self._branch_points = BranchPoints(self.solver, self.method, self.q_factor, self.q_unit,
+        path = Path(self.solver, self.drive) if self.drive.several else self.solver
+        self._branch_points = BranchPoints(path, self.method, self.q_factor, self.q_unit,
                                            self.l_unit, self._q_size, self.qd, self.size)
         if self.method == "newton" and self.size > self.block_size:
             self._newton = NewtonPath(self.solver, self.q, self.q_factor, self.block_size)
@@ -179,7 +183,19 @@ class Sweeper:
     def _positions(self, q_si):
         if self._newton is not None:
             return self._newton.positions(q_si)
-        return self.solver.positions(q_si)
+        if not self.drive.several:
+            return self.solver.positions(q_si)
+        qs, rates, accels = self.drive(q_si, self.qd, self.qdd)
+        kin = self.solver.positions(qs)
+        kin.rates, kin.accels = rates, accels       # every driver's, row by row
+        return kin
+
+    def _rates(self, sub, order):
+        """The drivers' rates of ``order`` (1, 2) at the rows of ``sub``: the first's, or
+        every driver's as :meth:`_positions` found them."""
+        if not self.drive.several:
+            return self.qd if order == 1 else self.qdd
+        return sub.rates if order == 1 else sub.accels
 
     def _block(self, lo, hi) -> Block:
         q = self.values(lo, hi)
@@ -197,7 +213,7 @@ class Sweeper:
         if rows.size == 0:
             return Block(q, good, {n: np.zeros(0) for n in self.names})
         sub = kin if good.all() else _subset(kin, good)
-        self.solver.velocities(sub, self.qd)   # also gives every group's conditioning measure
+        self.solver.velocities(sub, self._rates(sub, 1))   # and each group's conditioning
         self._branch_points.scan(sub, q[rows], lo + rows)
         keep = np.ones(rows.size, bool)
         threshold = getattr(self.solver, "singular", SINGULAR)
@@ -220,7 +236,7 @@ class Sweeper:
             return Block(q, good, {n: np.zeros(0) for n in self.names},
                          _conditioning(sub) if keep.any() else np.zeros(0))
         if self.order >= 2:
-            self.solver.accelerations(sub, self.qdd)
+            self.solver.accelerations(sub, self._rates(sub, 2))
         alive = np.nonzero(keep)[0]
         while True:             # each pass leaves out the rows one refusal names
             try:
@@ -256,9 +272,11 @@ class Sweeper:
 
 
 def sweep(mech, q, names=None, method="closed", tol=None, qdot=None, qddot=None,
-          block: int | None = None) -> Sweep:
-    """Solve ``mech`` at every driver value of ``q`` (display units, 1-D), in blocks."""
-    sweeper = Sweeper(mech, q, names, method, tol, qdot, qddot, block)
+          block: int | None = None, ties=None) -> Sweep:
+    """Solve ``mech`` at every driver value of ``q`` (display units, 1-D), in blocks; with
+    several drivers, ``q`` is the first's and ``ties`` {name: expression of it} sets others
+    (``answers.quantities.drive``)."""
+    sweeper = Sweeper(mech, q, names, method, tol, qdot, qddot, block, ties=ties)
     q = np.asarray(sweeper.q, dtype=float)
     solved, parts, conditioning = [], {n: [] for n in sweeper.names}, [np.zeros(0)]
     try:

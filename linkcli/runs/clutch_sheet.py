@@ -147,7 +147,16 @@ def _display(mech, quantity, value):
             return value / units.factor(kind), units.names[kind]
         if quantity.a == "energy":
             return value, "J"
-        rate = units.names["angular_rate"]
-        return value / units.factor("angular_rate") * units.factor("time"), \
-            f"{rate}/{units.names['time']}" if "/" not in rate else f"({rate})/{units.names['time']}"
+        return _acceleration(units, value)
     return value / parse_unit(unit)[1], unit
+
+
+def _acceleration(units, value):
+    """An angular acceleration (rad/s^2) in the angular rate's unit per time unit: rpm/s,
+    deg/s^2 (a rate per second, per second); rad/s^2 where the two do not compose."""
+    rate, time = units.names["angular_rate"], units.names["time"]
+    base, slash, per = rate.partition("/")
+    unit = f"{rate}/{time}" if not slash else f"{base}/{time}^2" if per == time else None
+    if unit is None:
+        return value, "rad/s^2"
+    return value / (units.factor("angular_rate") / units.factor("time")), unit

@@ -5,8 +5,10 @@ about a microsecond whatever it computes, plus the Python that strings them.  Fo
 seed-004 four-bar (angles of the coupler and rocker and their two rates) and the seed-000
 crank-slider (the rod's angle, the slider's x and their rates) this times:
 
-- linkcli's call ``Linkage.solve(q, names=...)`` and its phases (positions, velocities,
-  accelerations with their checks, the report's values);
+- linkcli's call ``Linkage.solve(q, names=...)`` (from its second call the straight-line
+  solve of ``kinematics/straight.py``) and the phases of its general path (positions,
+  velocities, accelerations with their checks, the report's values), which answers the
+  positions the straight-line solve leaves;
 - ``straight``: linkcli's algorithm written as one straight-line NumPy function for each
   mechanism: the same circle intersection, the same 2x2 rate systems on the points, the
   same refusals (assembly, toggle within rounding, singular rate system, finiteness), the
@@ -14,7 +16,7 @@ crank-slider (the rod's angle, the slider's x and their rates) this times:
 - ``hand``: the hand-written closed form of ``speed.py`` (no checks, angles in (-pi, pi]).
 
 ``straight`` against ``hand`` is what the checks and the general formulation cost;
-linkcli against ``straight`` is what the structure (groups, dictionaries, plans) costs.
+linkcli against ``straight`` is what is left of the structure (the plan, the result).
 
     python benchmarks/overhead.py [--rounds R]
 
@@ -214,7 +216,7 @@ def main(argv=None):
              f"{time.strftime('%Y-%m-%d')}, {machine()}. Best of {args.rounds} rounds of 200 "
              "calls (phases: the best of each).", "",
              "| mechanism | linkcli | linkcli's algorithm and checks, straight-line | "
-             "hand-written, no checks | linkcli's phases: positions, velocities, "
+             "hand-written, no checks | linkcli's general path, phases: positions, velocities, "
              "accelerations, report values | straight - linkcli | linkcli, compiled loop |",
              "| --- | ---: | ---: | ---: | --- | ---: | ---: |"]
     for key in STRAIGHT:
@@ -229,7 +231,9 @@ def main(argv=None):
     lines += ["", "Straight-line: the same operations as linkcli for this mechanism, in one "
               "function (the values agree bit for bit); what it costs over the hand-written "
               "code is the general formulation and the checks, what linkcli costs over it is "
-              "the structure (groups, dictionaries, the plan). The compiled loop "
+              "what is left of its structure: a call is written out the same way once per "
+              "mechanism (kinematics/straight.py); the phases are those of the general path "
+              "(groups, dictionaries, the plan), which answers what that leaves. The compiled loop "
               "(kinematics.compiled, LINKCLI_JIT=1 with numba) does the same work position by "
               "position in one compiled function."]
     text = "\n".join(lines)

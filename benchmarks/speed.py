@@ -524,7 +524,7 @@ def chart(rows) -> str:
         ratio.axhline(1.0, color="grey", lw=0.8)
         ratio.set_xlabel("positions N")
         ratio.set_ylabel("time over hand-written")
-        ratio.set_ylim(bottom=0)
+        ratio.set_ylim(0, 4)            # (pylinkage's larger ratios run off the top)
         for a in (ax, ratio):
             a.grid(True, which="both", alpha=0.3)
             a.legend(fontsize=7)

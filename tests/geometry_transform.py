@@ -400,7 +400,8 @@ class Similarity:
             return self._keys(v, p, {"disc": None, "side": None,
                                      "radius": lambda w, q: self.length(w)})
         return self._keys(spec, path, {"pulley": None, "radius": lambda v, p: self.length(v),
-                                       "to": to, "along": self.axis, "side": None})
+                                       "to": to, "along": self.axis, "side": None,
+                                       "slip": None})
 
     def sec_springs(self, value, path):
         return self._each(value, path, lambda v, p: self.element(v, p, "k"))
@@ -458,7 +459,7 @@ class Similarity:
         self.no_turn(path, "initial values of coordinates")
         out = {}
         for key, value in spec.items():
-            if key == "from":
+            if key in ("from", "mode"):         # a mode's number is no value
                 out[key] = value
                 continue
             name = key[:-4] if key.endswith("_dot") else key

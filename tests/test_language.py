@@ -17,6 +17,7 @@ import re
 
 import pytest
 
+from linkcli.errors import LinkcliError
 from linkcli.exports import worked
 from linkcli.input.document import build
 from linkcli.input.source import load_file
@@ -26,6 +27,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 #: a clutch problem (shafts:) has no worked solution: export refuses it (docs/machines.md)
 FILES = sorted(p for p in glob.glob(os.path.join(ROOT, "mechanisms", "*.yaml"))
                if "shafts" not in load_file(p).data)
+#: the documentation's examples: cautions, design searches, friction circles, instability
+EXAMPLES = sorted(glob.glob(os.path.join(ROOT, "docs", "examples", "*.yaml")))
 METHOD = {"triad-class3.yaml": "newton"}      # a class-III group: the closed form refuses it
 WORD = re.compile(r"[^\W\d_]\w*")      # a word, a name (rope9) or a symbol (omega_d)
 OPTION = re.compile(r"--[\w-]+(?: \w+)?")   # a command's option and its value: '--method newton'
@@ -34,10 +37,10 @@ DECIMAL_POINT = re.compile(r"\d\.\d")
 #: the notation of the formulas, the same in both languages
 SYMBOLS = {"conj", "sum", "cos", "sin", "omega", "Omega", "alpha", "beta", "gamma", "delta",
            "phi", "theta", "zeta", "psi", "rho", "qdot", "xdot", "xddot", "RRR", "RRP",
-           "PRR", "PRP", "RPP", "RPR", "cross", "rel"}
+           "PRR", "PRP", "RPP", "RPR", "cross", "rel", "dOmega"}
 #: words Italian writes as English does (a plural, a preposition, the names of people)
 SHARED = {"per", "guide", "Coriolis", "Brent", "Grübler", "Lagrange", "Newton", "Raphson", "initial",
-          "find", "file"}
+          "find", "file", "smallest", "nearest", "largest"}   # (choose: the file's words)
 UNITS = {"deg", "rad", "rpm", "Nm", "Nms", "kNm", "slug", "Hz", "kg", "lb", "lbf", "ft"}
 #: the sections of a file whose keys are names (points, bodies, loads, quantities...)
 NAMED = ("frame", "points", "links", "sliders", "actuators", "loads", "quantities",
@@ -87,7 +90,7 @@ def english_in_italian(path, blocks=worked.blocks) -> tuple:
     en_data, en, _ = _lines(blocks(mech, "en", figure=False, method=method), mech)
     it_data, it, names = _lines(blocks(mech, "it", figure=False, method=method), mech)
     allowed = {w for line in it_data for w in WORD.findall(line)} | names | _names(doc) \
-        | SYMBOLS | SHARED | UNITS
+        | set(WORD.findall(path)) | SYMBOLS | SHARED | UNITS
     english = {w for line in en for w in WORD.findall(line) if PLAIN.fullmatch(w)} - allowed
     found = sorted({w for line in it for w in WORD.findall(line) if w in english})
     points = [line for line in it + it_data if DECIMAL_POINT.search(line)]
@@ -99,6 +102,22 @@ def test_italian_solution_is_italian(path):
     found, points = english_in_italian(path)
     assert not found, f"English words in the Italian worked solution: {found}"
     assert not points, f"decimal points in the Italian worked solution: {points[:3]}"
+
+
+def test_examples_italian_solutions_are_italian():
+    """The same over the documentation's examples that export (the others are refusals,
+    documented as such): the figure check's cautions, design searches, friction circles,
+    a frequency response's peaks."""
+    checked, wrong = 0, {}
+    for path in EXAMPLES:
+        try:
+            found, points = english_in_italian(path)
+        except LinkcliError:
+            continue
+        checked += 1
+        if found or points:
+            wrong[os.path.basename(path)] = (found, points[:2])
+    assert checked >= 25 and wrong == {}, (checked, wrong)
 
 
 def test_check_finds_an_english_line(monkeypatch):

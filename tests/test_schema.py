@@ -124,6 +124,8 @@ _ALWAYS_LOADER = [           # messages of rules that need the rest of the file
     r"^a file has one of 'driver'",
     r"^the driver load acts on the driver coordinate",   # 'on' names a driver of 'drivers:'
     r"^one load per driver must be unknown",
+    r"^'driver' is for a velocity ratio",
+    r"^'driver' picks one of several drivers",
     r"already fixes: one coordinate takes one driver",
     r"^the driver's name .* is taken by",
     r"^a harmonic excitation needs its frequency",

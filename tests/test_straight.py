@@ -130,13 +130,22 @@ def _edges(mech, plan, solver, count=240):
     return np.array(out)
 
 
+def _scalar(fast, q, w, al):
+    """The scalar version's answer, None where it refuses (an arithmetic exception
+    included, as the plan takes it)."""
+    try:
+        return fast.scalar(q, w, al)
+    except (ArithmeticError, ValueError):
+        return None
+
+
 def _conditioning(solver, q, w, al):
     """The least conditioning of the groups' rate systems at driver value ``q``."""
     kin = solved(solver, 1, np.array([q]), w, al)
     return min([float(np.min(m)) for m in kin.measure.values()] + [1.0])
 
 
-def compare(mech, names, flip=False, seed=0):
+def compare(mech, names, flip=False, seed=0, extra=()):
     """(worst difference, positions answered, random positions left to the general path
     while it answers) of the straight-line solve against the general path, one position at
     a time and all at once, relative to each quantity's largest magnitude at the random
@@ -150,11 +159,11 @@ def compare(mech, names, flip=False, seed=0):
         return None
     w, al = mech.driver.rate, mech.driver.accel
     randoms = np.concatenate([[mech.driver.value], _driver_range(mech, 40, seed)])
-    edges = _edges(mech, plan, solver)
+    edges = np.concatenate([extra, _edges(mech, plan, solver)])
     found, left = [], 0
     for q in np.concatenate([randoms, edges]):
         general = _general(mech, plan, solver, np.array([q]), w, al)
-        mine = fast.scalar(float(q), w, al)
+        mine = _scalar(fast, float(q), w, al)
         if isinstance(general, LinkcliError):
             assert mine is None, (q, str(general))
             assert fast.array(np.array([q]), w, al) is None, q
@@ -184,6 +193,8 @@ def compare(mech, names, flip=False, seed=0):
         assert table is not None
         rows = _general(mech, plan, solver, np.array(answered), w, al)
         worst = max(worst, _worst(rows, table, periods, scales))
+        short = fast.short(np.array(answered[:straight.SHORT]), w, al)    # a few positions
+        worst = max(worst, _worst(rows[:, :straight.SHORT], short, periods, scales))
     return worst, len(found), left
 
 
@@ -235,6 +246,24 @@ def test_a_sign_flipped_in_one_generated_group_is_caught(monkeypatch):
     monkeypatch.setitem(straight._GROUPS, straight.RRR, flipped)
     mech = linkcli.loads(FOURBAR).model
     assert compare(mech, names)[0] > 1e-3
+
+
+def test_a_check_left_out_is_caught(monkeypatch):
+    """A planted defect: the generated checks dropped.  A rod 40 mm long on a crank of 50
+    reaches the guide only while 50 sin q <= 40: just inside that limit its discriminant
+    is within the toggle's rounding band, a position the general path refuses (singular);
+    without its checks the straight-line solve answers it, and the comparison says so."""
+    text = CRANK_SLIDER.replace("length: 200", "length: 40")
+    names = ["beta", "betadot", "xBddot"]
+    limit = math.asin(0.040 * math.sqrt(1 - 1e-14) / 0.050)     # 40^2 - (50 sin q)^2 ~ 0
+    mech = linkcli.loads(text).model
+    plan, solver, _ = _setup(mech, names)
+    assert isinstance(_general(mech, plan, solver, np.array([limit]), 1.0, 0.0),
+                      SingularError)
+    compare(mech, names, extra=[limit])
+    monkeypatch.setattr(straight._Writer, "require", lambda self, lhs, rhs: None)
+    with pytest.raises(AssertionError):
+        compare(linkcli.loads(text).model, names, extra=[limit])
 
 
 def assert_same_refusal(text, q, kind, field, monkeypatch):
@@ -332,3 +361,25 @@ def test_the_evaluator_of_names_it_does_not_write_is_solves():
     assert ev._straight is None
     assert ev(30.0) == tuple(float(v) for v in linkage.solve(30.0, names=["beta", "vB"])
                              .values.values())
+
+
+def test_the_kinematics_evaluator_gives_the_solvers_points_and_angles():
+    """``straight.evaluator`` (SI probes for the layers above kinematics): a point's x, y
+    and rates, a link's angle and rates, at qd = 1 and qdd = 0 the derivatives over q."""
+    mech = linkcli.loads(FOURBAR).model
+    solver = solver_for(mech)
+    fast = straight.evaluator(solver, [("x", "B", None, 1), ("y", "B", None, 2),
+                                       ("angle", "A", "B", 0), ("angle", "A", "B", 2),
+                                       ("length", "A0", "B", 1)])
+    q = np.linspace(0.1, 6.0, 7)
+    kin = solved(solver, 2, q, 1.0, 0.0)
+    z, dz, ddz = (d["B"] - d["A"] for d in (kin.pos, kin.vel, kin.acc))
+    w = dz / z
+    r = kin.pos["B"] - mech.fixed["A0"]
+    expected = [kin.vel["B"].real, kin.acc["B"].imag, np.angle(z) % (2 * np.pi),
+                (ddz / z - w * w).imag, (r.conjugate() * kin.vel["B"]).real / np.abs(r)]
+    table = fast.array(q, 1.0, 0.0)
+    for i, e in enumerate(expected):
+        assert np.allclose(table[i], e, rtol=0, atol=CLOSE * np.max(np.abs(e))), i
+        assert np.isclose(fast.scalar(float(q[3]), 1.0, 0.0)[i], e[3], rtol=0,
+                          atol=CLOSE * np.max(np.abs(e))), i

@@ -11,7 +11,6 @@ import pytest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cli_helpers import CODE, FOURBAR, run  # noqa: E402
-from linkcli.input.source import load_file  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DATA = os.path.join(ROOT, "tests", "data", "trust")   # repro files of this round
@@ -346,12 +345,7 @@ def test_rounding_noise_of_a_zero_is_printed_as_zero():
     assert json.loads(out)["points"]["A"][1] == 0.0    # 3.7e-14 mm beside 1144 mm
 
 
-# --- pictures -------------------------------------------------------------------------------
-#: a clutch problem (shafts:, docs/machines.md) has no mechanism to draw: draw refuses it
-SHIPPED = sorted(f for f in os.listdir(os.path.join(ROOT, "mechanisms")) if f.endswith(".yaml")
-                 and "shafts" not in load_file(os.path.join(ROOT, "mechanisms", f)).data)
-
-
+# --- pictures (every shipped figure's labels: tests/test_figures.py) ----------------------------
 def _body_points(ax):
     """Points every pixel along the mechanism's lines and outlines (gid 'body'), in pixels,
     with half each line's width: (points, pads)."""
@@ -369,39 +363,6 @@ def _body_points(ax):
             points.append(a + np.linspace(0, 1, n)[:, None] * (b - a))
             pads.append(np.full(n, 0.5 * artist.get_linewidth() * ax.figure.dpi / 72))
     return np.vstack(points), np.concatenate(pads)
-
-
-@pytest.mark.parametrize("name", SHIPPED)
-def test_draw_labels_do_not_overlap(name):
-    """The labels' bounding boxes, measured on the rendered figure (pixels), are pairwise
-    apart, inside the axes, and off the mechanism's lines (links, actuators, sliders' arms
-    and blocks, springs, dampers, cords: each line sampled every pixel, with its width):
-    236 labels of 60 files lay across them."""
-    from linkcli.api import load
-    from linkcli.errors import StructureError
-    from linkcli.pictures.drawing import label_boxes
-    from linkcli.pictures.plotting import drawn
-    mech = load(os.path.join(ROOT, "mechanisms", name)).model
-    try:
-        fig = drawn(mech)
-    except StructureError as exc:       # a class-III group: draw solves the closed form
-        assert exc.exit_code == 3 and "class-III" in str(exc)
-        pytest.skip("draw refuses a class-III group")
-    fig.canvas.draw()                   # measured as saved: an equal aspect applied
-    ax = fig.axes[0]
-    frame = ax.get_window_extent(fig.canvas.get_renderer())
-    boxes = label_boxes(ax)
-    assert len(boxes) >= 3
-    for i, (text, box) in enumerate(boxes):
-        assert frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0 \
-            and box.y1 <= frame.y1, text.get_text()
-        clash = [other.get_text() for other, b in boxes[:i] if b.overlaps(box)]
-        assert clash == [], f"{text.get_text()!r} over {clash}"
-    points, pads = _body_points(ax)
-    for text, box in boxes:
-        inside = ((points[:, 0] >= box.x0 - pads) & (points[:, 0] <= box.x1 + pads) &
-                  (points[:, 1] >= box.y0 - pads) & (points[:, 1] <= box.y1 + pads))
-        assert not inside.any(), f"{text.get_text()!r} over the mechanism's lines"
 
 
 def test_draw_names_a_pendulum_s_angle_as_solve_does():
@@ -500,7 +461,7 @@ def test_the_modes_labels_are_apart_and_off_the_mechanism():
     over its block and spring s1's zigzag)."""
     import linkcli
     from linkcli.pictures import vibration as pictures
-    from linkcli.pictures.drawing import label_boxes
+    from linkcli.pictures.labels import label_boxes
     mech = linkcli.load(os.path.join(ROOT, "tests", "data", "vibration",
                                      "symmetric_chain_mode.yaml")).model
     fig = pictures.modes_figure(mech)
@@ -514,3 +475,5 @@ def test_the_modes_labels_are_apart_and_off_the_mechanism():
             inside = ((points[:, 0] >= box.x0 - pads) & (points[:, 0] <= box.x1 + pads) &
                       (points[:, 1] >= box.y0 - pads) & (points[:, 1] <= box.y1 + pads))
             assert not inside.any(), f"{text.get_text()!r} over the mechanism's lines"
+    from legibility import defects
+    assert defects(fig) == []           # every stroke, as tests/test_figures.py measures

@@ -84,6 +84,12 @@ def test_arm_end_point_and_jacobian_against_the_closed_form():
     assert jacobian == pytest.approx([1j * l1 * np.exp(1j * t1), 1j * l2 * np.exp(1j * t2)],
                                      abs=1e-12)
     assert kin.vel["B"] == pytest.approx(jacobian[0] * w1 + jacobian[1] * w2, abs=1e-12)
+    answers = linkcli.load(os.path.join(DATA, "arm-2r.yaml")).solve(
+        names=["J11", "J12", "J21", "J22"]).values          # the Jacobian as answers, m/deg
+    per_deg = np.pi / 180
+    assert [answers[n] for n in ("J11", "J12", "J21", "J22")] == pytest.approx(
+        [jacobian[0].real * per_deg, jacobian[1].real * per_deg, jacobian[0].imag * per_deg,
+         jacobian[1].imag * per_deg], abs=1e-12)
     a = (1j * e1 - w1 ** 2) * l1 * np.exp(1j * t1) + (1j * e2 - w2 ** 2) * l2 * np.exp(1j * t2)
     assert kin.acc["B"] == pytest.approx(a, abs=1e-12)
 

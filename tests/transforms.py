@@ -344,7 +344,12 @@ class Sites:
         for name, spec in self.items(value, path):
             self._only(spec, path + (name,), {"pulley": NAME, "radius": "length",
                                                "along": self._line, "side": NAME,
-                                               "to": self._cord_end})
+                                               "to": self._cord_end, "slip": self._slip})
+
+    def _slip(self, value, path):
+        """A belt's slip: a percentage, or two [s1, s2] (pure numbers)."""
+        for i, v in enumerate(value if isinstance(value, list) else [value]):
+            self.put(path + ((i,) if isinstance(value, list) else ()), None, v)
 
     def _cord_end(self, value, path):
         if isinstance(value, dict):
@@ -499,7 +504,7 @@ class Sites:
 
     def _initial(self, value, path):
         for key, v in self.items(value, path):
-            if key == "from":
+            if key in ("from", "mode"):         # a mode's number is no value
                 continue
             name, rate = (key[:-4], True) if str(key).endswith("_dot") else (key, False)
             base = self.bases.get(name)
@@ -519,7 +524,7 @@ class Sites:
 NAME = object()     # a place that holds a name or a word, not a number
 #: the keys of a quantity that hold names, words, mode numbers and powers (no values)
 QUANTITY_WORDS = (
-    "acceleration", "along", "angle", "between", "component", "contact_force",
+    "acceleration", "along", "angle", "between", "component", "contact_force", "driver",
     "instant_centre", "instant_centre_distance", "least_speed", "least_speed_at", "length",
     "load", "normal_acceleration", "normal_to", "point", "reaction", "relative",
     "relative_acceleration", "relative_speed", "rotation", "signed", "slider_force", "speed",

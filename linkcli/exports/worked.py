@@ -199,7 +199,7 @@ def _constraint_text(c, mech, f, unit):
     from linkcli.kinematics.groups import Dist, Line
     if isinstance(c, Dist):
         length = "q" if c.length is None else f"{c.length / f:.6g} {unit}"
-        return f"|{c.p} - {c.a}| = {length}"
+        return f"|{_shown(c.p)} - {_shown(c.a)}| = {length}"
     if isinstance(c, Line):
         body = mech.bodies.get(c.body)
         if body is not None and body.guide is not None and c.b.startswith("~"):

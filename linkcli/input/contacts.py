@@ -21,6 +21,7 @@ be taut and tangent in the figure, a line through two points tangent to the disc
 """
 from __future__ import annotations
 
+import dataclasses
 
 from linkcli.model.exact import cis
 from linkcli.model.mechanism import FRAME, Rolling
@@ -207,7 +208,7 @@ class ContactsSection:
         """A taut cord from a pulley to a point P (``to: P``), or a belt strand from the
         pulley to another disc (``to: {disc: D, radius: r, side: left}``)."""
         self.name(name, path, what="cord")
-        spec = self.mapping(value, path, {"pulley", "radius", "to", "along", "side"},
+        spec = self.mapping(value, path, {"pulley", "radius", "to", "along", "side", "slip"},
                             ("pulley", "radius", "to", "along"))
         disc, center = self.disc_body(spec["pulley"], path + ("pulley",), bodies)
         radius = self.positive(spec["radius"], path + ("radius",), units)
@@ -215,8 +216,13 @@ class ContactsSection:
         side = self.side(spec, path)
         tangent = figure[center] + side * radius * 1j * u
         if isinstance(spec["to"], dict):
-            return self.belt_entry(name, spec["to"], path + ("to",), units, bodies, figure,
+            belt = self.belt_entry(name, spec["to"], path + ("to",), units, bodies, figure,
                                    (disc, center, radius, u, side, tangent))
+            return dataclasses.replace(belt, slip=self.slip(spec, path))
+        if "slip" in spec:
+            raise self.error(path + ("slip",), "a slip is of a belt between two pulleys, and "
+                             "this cord runs to a point", hint="to: {disc: D, radius: r, side: "
+                             "left} for a belt strand")
         if not isinstance(spec["to"], str):
             raise self.error(path + ("to",), f"expected a point name or a disc, got "
                              f"{spec['to']!r}", hint="to: P, or to: {disc: D, radius: r, "
@@ -224,6 +230,30 @@ class ContactsSection:
         point = self.name(spec["to"], path + ("to",), set(figure))
         self.taut(path + ("to",), figure[point] - tangent, u, radius, side, point)
         return Rolling(name, disc, center, radius, "cord", u, side, point=point)
+
+    def slip(self, spec, path) -> float:
+        """A belt's slip as a fraction: ``slip: s`` (per cent), or ``[s1, s2]`` between the
+        driver and the belt and between the belt and the follower, combined as the books
+        combine them, s = s1 + s2 (N2/N1 = d1/d2 (1 - s/100), the product s1 s2 / 100^2
+        neglected); each, and s, in [0, 100)."""
+        if "slip" not in spec:
+            return 0.0
+        where = path + ("slip",)
+        value = spec["slip"]
+        parts = value if isinstance(value, list) else [value]
+        if not 1 <= len(parts) <= 2:
+            raise self.error(where, f"a slip is a percentage or two [s1, s2], got {value!r}")
+        total = 0.0
+        for i, part in enumerate(parts):
+            s = float(self.number(part, where + ((i,) if isinstance(value, list) else ())))
+            if not 0 <= s < 100:
+                raise self.error(where, f"a slip is a percentage in [0, 100), got {s:g}",
+                                 hint="2.5 for '2.5 % slip'; 100 % would leave the follower "
+                                 "at rest")
+            total += s
+        if total >= 100:
+            raise self.error(where, f"the slips add up to {total:g} %, not under 100 %")
+        return total / 100
 
     def belt_entry(self, name, to, path, units, bodies, figure, pulley) -> Rolling:
         """The strand runs from the pulley's tangent point to the other disc's, whose

@@ -18,7 +18,7 @@ from linkcli.errors import InputError
 from linkcli.model.mechanism import Body, Mechanism, Quiz, split_rate
 from linkcli.model.units import Units
 from linkcli.input.source import Document
-from linkcli.input.quantities import QuantitiesSection
+from linkcli.input.quantities import FORCES, QuantitiesSection
 from linkcli.input.textbook import TextbookQuantities
 from linkcli.input.forces import ForceQuantities
 from linkcli.input.efficiency import EfficiencyQuantities
@@ -109,6 +109,7 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
         if design is not None:
             report["design"] = design.names
         keys = self.block(self.keys, data, quantities, loads, pool, report) or ()
+        self.block(self.slipping_forces, data, rolling, loads, quantities)
         self.check_points_used(pool, bodies, actuators, fixed)
         self.large_enough(units)
         if self.errors:
@@ -149,6 +150,22 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
                        f"'drivers' (several, each with its rates) and 'coordinates' "
                        f"(vibrations), not both '{given[0]}' and '{given[1]}'",
                        hint=f"remove one of '{given[0]}' and '{given[1]}'")
+
+    def slipping_forces(self, data, rolling, loads, quantities):
+        """Refuse forces where a belt slips: its slip loses power, so the torques are not in
+        the ratio of the speeds and virtual work (and the joint forces' contacts) do not
+        hold; its speeds are answers."""
+        slipping = [r.name for r in rolling.values() if r.slip]
+        forces = [n for n, q in quantities.items() if q.kind in FORCES and q.kind != "load"]
+        asked = ([f"loads ({', '.join(loads)})"] if loads else []) + \
+            ([f"forces ({', '.join(forces)})"] if forces else []) + \
+            (["dynamics"] if "dynamics" in data else [])
+        if slipping and asked:
+            raise self.error(("cords", slipping[0], "slip"), f"the belt {slipping[0]} slips, "
+                             f"and the file asks {' and '.join(asked)}: a slipping belt loses "
+                             "power, so its torques are not in the ratio of its speeds and "
+                             "virtual work does not hold", hint="ask the speeds of a slipping "
+                             "belt drive; its forces need the belt's tensions (not modelled)")
 
     def statement(self, data) -> str:
         value = data.get("statement", "")

@@ -245,6 +245,9 @@ class ElementsReader:
     # free response ---------------------------------------------------------------------
     def initial(self, value, path, elements) -> dict:
         spec = self.p.mapping(value, path)
+        if "mode" in spec:
+            elements.initial_mode = self.initial_mode(spec, path)
+            return {}
         out = {}
         if "from" in spec:
             elements.initial_from = self.initial_from(spec["from"], path + ("from",), elements)
@@ -262,6 +265,30 @@ class ElementsReader:
             x0, v0 = out.get(j, (0.0, 0.0))
             out[j] = (x0, number) if rate else (number, v0)
         return out
+
+    def initial_mode(self, spec, path) -> tuple:
+        """``{mode: N, q: a}``: released from rest in mode N, its shape scaled so that the
+        offset of coordinate q from the equilibrium is a (q's unit): (N - 1, j, a in SI)."""
+        mode = spec["mode"]
+        count = len(self.mech.coordinates)
+        if isinstance(mode, bool) or not isinstance(mode, int) or not 1 <= mode <= count:
+            raise self.p.error(path + ("mode",), f"a mode is numbered 1-{count} from the "
+                               f"lowest frequency, got {mode!r}")
+        others = [k for k in spec if k != "mode"]
+        if len(others) != 1 or others[0] == "from" or str(others[0]).endswith("_dot"):
+            raise self.p.error(path, "a start in a mode gives the amplitude of one coordinate "
+                               f"(its offset from the equilibrium), got {others or 'none'}",
+                               hint=f"initial: {{mode: {mode}, "
+                               f"{self.mech.coordinates[0].name}: 10}}: released from rest "
+                               "in that mode's shape")
+        name = others[0]
+        j = self.coordinate(name, path + (name,))
+        base = self.mech.coordinates[j].base
+        amplitude = self.p.number(spec[name], path + (name,), base, self.units)
+        if float(amplitude) == 0:
+            raise self.p.error(path + (name,), "the amplitude of a start in a mode is not 0",
+                               hint="without an amplitude the system stays at rest")
+        return mode - 1, j, amplitude
 
     def initial_from(self, value, path, elements) -> tuple:
         """``from:`` equilibrium (the default), figure, unstretched (the one spring),

@@ -93,6 +93,7 @@ class QuantitiesSection:
         spec = self.mapping(self.get(data, (), "quantities", required=False, default={}) or {},
                             ("quantities",))
         quantities = {"q": Quantity("q", "q")}
+        self.ratio_drivers = drivers
         names = _Names()
         names.claim("q", RATES, "the driver's coordinate", "q")
         for d in drivers:
@@ -166,7 +167,7 @@ class QuantitiesSection:
         if isinstance(value, dict) and any(k in value for k in GEARING):
             return self.gear_quantity(name, value, path)
         value = self.mapping(value, path, set(GEOMETRY) | {"component", "unit", "point",
-                                                           "signed", "axis"})
+                                                           "signed", "axis", "driver"})
         kinds = [k for k in GEOMETRY if k in value]
         if len(kinds) != 1:
             if len(kinds) > 1 and set(kinds) <= set(GEOMETRY[:5]):
@@ -199,6 +200,8 @@ class QuantitiesSection:
             if not isinstance(value["signed"], bool):
                 raise self.error(path + ("signed",), f"signed is true or false, got "
                                  f"{value['signed']!r}")
+        if "driver" in value:
+            self.ratio_driver(value["driver"], kind, path + ("driver",))
         if "point" in value and kind not in PROJECTIONS:
             raise self.error(path + ("point",), "'point' is for along and normal_to")
         if "axis" in value and not (kind == "reaction" and value.get("component") in PROJECTED):
@@ -207,8 +210,9 @@ class QuantitiesSection:
                              "axis: OTHER}")
         if kind in GEOMETRY[5:]:
             line = self.doc.line(path)
-            return dataclasses.replace(self.textbook_quantity(name, kind, value, path, pool),
-                                       unit=unit, signed=value.get("signed", False), line=line)
+            q = dataclasses.replace(self.textbook_quantity(name, kind, value, path, pool),
+                                    unit=unit, signed=value.get("signed", False), line=line)
+            return dataclasses.replace(q, b=value["driver"]) if "driver" in value else q
         if kind in ("angle", "length"):
             a, b = self.pair(value[kind], path + (kind,), pool)
             return Quantity(name, kind, a, b, unit=unit, signed=value.get("signed", False))
@@ -237,6 +241,16 @@ class QuantitiesSection:
                          f"{role(other, theirs, other_whose)}",
                          hint=f"rename {what} or {other_what}: rates are named NAMEdot and "
                          "NAMEddot, so names ending in 'd' or 'dot' collide")
+
+    def ratio_driver(self, name, kind, path) -> None:
+        """``driver:`` of a velocity ratio: one of ``drivers:`` (the ratio per its rate)."""
+        if kind != "velocity_ratio":
+            raise self.error(path, "'driver' is for a velocity ratio (of several drivers)")
+        drivers = [d.name for d in self.ratio_drivers]
+        if len(drivers) < 2:
+            raise self.error(path, "'driver' picks one of several drivers ('drivers:'); this "
+                             "file has one", hint="leave it out: the ratio is per q")
+        self.name(name, path, set(drivers), "driver")
 
     def ratio_of(self, q, quantities) -> bool:
         """Whether the quantity a velocity ratio is of is one whose rate is linear in the

@@ -32,12 +32,12 @@ SEARCH = 4096
 
 
 def figure_coordinates(mech):
-    """The coordinates measured on the figure's points (the driver's, or each declared one)
+    """The coordinates measured on the figure's points (each driver's, or each declared one)
     as the solver takes them: the configuration the figure draws."""
     figure = {**mech.fixed, **mech.moving}
     values = []
     for c in mech.coordinates:
-        if len(mech.coordinates) > 1 or mech.elements is not None:
+        if mech.elements is not None:
             values.append(c.value)          # coordinates are measured on the figure already
             continue
         if c.kind == "angle":

@@ -21,8 +21,10 @@ The disc (centre C, second point M, radius r, the model's side s) turns by Turn(
 - on a line of body B:        -Turn(C, M) + Turn(b, c) + (s / r) Carried(b, c, C, o, rho)
   (b -> c B's axis, o one of its points: the disc rolls on a fixed line of B's own frame)
 - a cord to P along u:        -Turn(C, M) + (s / r) Along(u, C, P)
-- a belt strand to disc E (centre D, second point N, radius r_E, side s_E):
-                              -Turn(C, M) + (s / r) Along(u, C, D) + (s s_E r_E / r) Turn(D, N)
+- a belt strand to disc E (centre D, second point N, radius r_E, side s_E), slipping by
+  the fraction f (0 unless given; the pulley C is the follower):
+                              -Turn(C, M) + (1 - f) [(s / r) Along(u, C, D)
+                                                     + (s s_E r_E / r) Turn(D, N)]
 - a circle about O, radius R: -Turn(C, M) + k Turn(O, C), k = -(R - r) / r inside,
                               (R + r) / r outside
 - disc E about its centre O:  as the circle, + (R / r) Turn(O, N) inside, - (R / r) outside.
@@ -340,9 +342,10 @@ def contact_terms(r, mech) -> list:
         return terms + [(Along(r.direction, r.center, r.point), r.side / r.radius)]
     if r.kind == "belt":
         other = mech.bodies[r.other]
-        return terms + [(Along(r.direction, r.center, r.track), r.side / r.radius),
+        kept = 1.0 - r.slip             # the follower's share of the belt's motion
+        return terms + [(Along(r.direction, r.center, r.track), kept * r.side / r.radius),
                         (Turn(other.points[0], other.points[1]),
-                         r.side * r.other_side * r.track_radius / r.radius)]
+                         kept * r.side * r.other_side * r.track_radius / r.radius)]
     ratio = -(r.track_radius - r.radius) / r.radius if r.inside else \
         (r.track_radius + r.radius) / r.radius
     terms.append((Turn(r.track, r.center), ratio))

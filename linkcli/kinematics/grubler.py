@@ -73,7 +73,7 @@ def repeated_strands(mech: Mechanism) -> list:
     for r in mech.rolling.values():
         if r.kind != "belt" or r.center not in mech.fixed or r.track not in mech.fixed:
             continue
-        ratio = r.side * r.other_side * r.track_radius / r.radius
+        ratio = (1 - r.slip) * r.side * r.other_side * r.track_radius / r.radius
         pair = (r.disc, r.other)
         if pair[::-1] in seen and pair not in seen:
             ratio, pair = 1.0 / ratio, pair[::-1]

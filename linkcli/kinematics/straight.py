@@ -49,6 +49,8 @@ from linkcli.kinematics.refusals import SINGULAR
 #: the checks are this many times wider than the general path's: a position it answers
 #: differently from the general one (a rounding away from a bound) is left to it
 MARGIN = 2.0
+#: arrays of at most this many positions are solved position by position (``Straight.short``)
+SHORT = 16
 #: probe kinds by the names a caller in another layer gives them
 KINDS = {"angle": ANGLE, "x": X, "y": Y, "length": LENGTH}
 
@@ -68,6 +70,21 @@ class Straight:
         self.order, self.size, self._plan = order, len(rows), (program, rows)
         self.scalar = self._first_scalar
         self.array = self._first_array
+
+    def short(self, q, w, al):
+        """The table of :meth:`array` for a short 1-D array (at most :data:`SHORT` values),
+        position by position by the scalar version: a NumPy operation costs about a
+        microsecond whatever its length, more than the arithmetic of a few positions."""
+        ws = w.tolist() if np.ndim(w) else [w] * q.size
+        als = al.tolist() if np.ndim(al) else [al] * q.size
+        scalar = self.scalar
+        try:
+            rows = [scalar(x, y, z) for x, y, z in zip(q.tolist(), ws, als)]
+        except (ArithmeticError, ValueError):
+            return None
+        if None in rows:
+            return None
+        return np.array(rows).T.copy()
 
     def function(self, array: bool):
         """The function of the array (or the scalar) version, written now if not yet; its

@@ -67,7 +67,8 @@ def of_quantity(mech, quantity) -> Dimension:
         from linkcli.model.clutch import ANSWERS
         return ANSWERS[quantity.a]
     if kind == "velocity_ratio":
-        return dimension(mech, quantity.a) / base_dimension(mech.driver.base)
+        per = mech.coordinates[mech.driver_index(quantity.b)] if quantity.b else mech.driver
+        return dimension(mech, quantity.a) / base_dimension(per.base)
     if kind in ("maximum", "minimum", "stroke"):
         return dimension(mech, quantity.a)
     if kind in ("at_maximum", "at_minimum"):

@@ -105,7 +105,17 @@ class Elements:
     #: what the initial offsets are measured from: ('equilibrium', None), ('figure', None)
     #: or ('unstretched', spring names): where those springs have their free measures
     initial_from: tuple = ("equilibrium", None)
+    #: a start in a mode: (k, j, a), released from rest in mode k (0-based) scaled so
+    #: that coordinate j's offset is a (SI); None otherwise
+    initial_mode: tuple | None = None
     equilibrium: str = "solve"                       # 'solve' from the figure | 'figure'
+
+    @property
+    def started(self) -> bool:
+        """Whether a free vibration has a start (``initial:``) other than rest at the
+        equilibrium."""
+        return bool(self.initial) or self.initial_from[0] != "equilibrium" or \
+            self.initial_mode is not None
 
     @property
     def imposed(self) -> tuple:

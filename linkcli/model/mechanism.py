@@ -87,7 +87,9 @@ class Rolling:
       ``track_radius``), which it meets on its ``other_side`` (+1 left, -1 right, looking
       along the strand): the strand's speed along u at the other disc is
       v_D . u - other_side r_D omega_D, so
-      omega = side ((v_C - v_D) . u + other_side r_D omega_D) / r.
+      omega = side ((v_C - v_D) . u + other_side r_D omega_D) / r; a belt that slips by the
+      fraction ``slip`` turns the pulley (the follower) at (1 - slip) of that:
+      omega = (1 - slip) side (...) / r.
 
     Each contact takes one degree of freedom (a higher pair in Grübler's count); a disc
     may have any number of them (a pulley with several cords).
@@ -107,6 +109,7 @@ class Rolling:
     other: str | None = None
     other_side: int = 1
     carrier: str = FRAME
+    slip: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -201,7 +204,8 @@ class Quantity:
       magnitude, or along / normal (left) to ``axis``: ('body', NAME) a body's axis,
       ('points', P, Q) the vector P -> Q, ('angle', radians) a fixed direction (None: the
       axis of body ``b``); 'slider_force' of slider ``a``, ``component`` normal or friction;
-    - 'velocity_ratio': d(a)/dq of the quantity named ``a``;
+    - 'velocity_ratio': d(a)/dq of the quantity named ``a`` (with several drivers, d(a)/dq_b
+      of the driver named ``b``, the others at rest: a column of the Jacobian);
     - 'least_speed', 'least_speed_at': of the line through points ``a`` and ``b`` of one
       body, the least speed of its points and where it is (distance from a along a->b);
     - the limits of the motion (kinds in LIMITS) of the quantity named ``a`` over the
@@ -394,6 +398,10 @@ class Mechanism:
                              file=self.file, key="loads",
                              hint="give one load, usually the driver's, the value 'unknown'")
         return load
+
+    def driver_index(self, name: str | None) -> int:
+        """The place of the driver ``name`` among the coordinates (None: the first, q)."""
+        return 0 if name is None else [c.name for c in self.coordinates].index(name)
 
     def unknown_loads(self) -> list:
         """The unknown loads, one per driver of a mechanism of several drivers."""

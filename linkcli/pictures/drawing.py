@@ -70,8 +70,14 @@ def _arrow(ax, tail, head, zorder, **props):
                 arrowprops=props, zorder=zorder)
 
 
-def _text(ax, z, text, **style):
-    ax.text(z.real, z.imag, text, **style)
+def _text(ax, z, text, anchor=None, **style):
+    """``text`` at ``z``; with ``anchor``, the point it names (a leader line is drawn to it
+    where the label must move far, :mod:`linkcli.pictures.labels`)."""
+    if anchor is None:
+        ax.text(z.real, z.imag, text, **style)
+        return
+    ax.annotate(text, (anchor.real, anchor.imag), xytext=(z.real, z.imag), textcoords="data",
+                annotation_clip=False, **style)
 
 
 def _label(ax, z, text, offset, **style):
@@ -109,7 +115,8 @@ def draw_elements(ax, scene, elements):
             _line(ax, rod, color="#333333", lw=1.2, zorder=4, gid=BODY)
             _line(ax, cup, color="#333333", lw=1.2, zorder=4, gid=BODY)
             _line(ax, piston, color="#333333", lw=2.0, zorder=4, gid=BODY)
-        _text(ax, (a + b) / 2 + 0.04 * scene.size * 1j, name, fontsize=8, ha="center",
+        _text(ax, (a + b) / 2 + 0.04 * scene.size * 1j, name, (a + b) / 2, fontsize=8,
+              ha="center",
               va="bottom", zorder=7)
 
 
@@ -195,12 +202,12 @@ def draw_polygon(ax, scene):
     for v in vectors(scene):
         _arrow(ax, v.tail, v.head, 8, arrowstyle="-|>", color=VECTOR, lw=1.6, shrinkA=0,
                shrinkB=4, mutation_scale=14)
-        _text(ax, v.label_at, v.label, color=VECTOR, fontsize=10, ha="center", va="center",
-              fontstyle="italic", zorder=9)
+        _text(ax, v.label_at, v.label, (v.tail + v.head) / 2, color=VECTOR, fontsize=10,
+              ha="center", va="center", fontstyle="italic", zorder=9)
         _line(ax, [v.tail, v.tail + 1.25 * v.radius], color=VECTOR, lw=0.7, ls=":", zorder=8)
         _arc(ax, v.tail, v.radius, 0, v.phi, color=VECTOR, lw=0.9, zorder=8)
-        _text(ax, v.angle_at, f"{v.angle_name} = {v.phi:.1f}°", color=VECTOR, fontsize=8,
-              ha="center", va="center", zorder=9)
+        _text(ax, v.angle_at, f"{v.angle_name} = {v.phi:.1f}°", v.arc_middle, color=VECTOR,
+              fontsize=8, ha="center", va="center", zorder=9)
 
 
 def draw_loads(ax, scene, values, units_text):
@@ -214,7 +221,7 @@ def _force(ax, scene, mark, color):
     tail = arrow_tail(mark, scene.size)
     _arrow(ax, tail, mark.at, 10, arrowstyle="-|>", color=color, lw=2.2, shrinkA=0, shrinkB=5,
            mutation_scale=16)
-    _text(ax, tail, mark.text, color=color, fontsize=9, ha="center",
+    _text(ax, tail, mark.text, tail, color=color, fontsize=9, ha="center",
           va="bottom" if mark.direction.imag <= 0 else "top", zorder=11)
 
 
@@ -223,7 +230,8 @@ def _torque(ax, scene, mark, color):
     _arc(ax, mark.at, r, -60, 200, color=color, lw=2, zorder=10)
     _arrow(ax, back, tip, 10, arrowstyle="-|>", color=color, lw=2, shrinkA=0, shrinkB=0,
            mutation_scale=16)
-    _text(ax, mark.at + complex(r, r), mark.text, color=color, fontsize=9, zorder=11)
+    _text(ax, mark.at + complex(r, r), mark.text, mark.at + r * (1 + 1j) / abs(1 + 1j),
+          color=color, fontsize=9, zorder=11)
 
 
 def _axial(ax, scene, mark, color):
@@ -231,7 +239,8 @@ def _axial(ax, scene, mark, color):
     for tail, tip in arrows:
         _arrow(ax, tail, tip, 10, arrowstyle="<|-" if mark.sign > 0 else "-|>", color=color,
                lw=2, shrinkA=5, shrinkB=0, mutation_scale=14)
-    _text(ax, spot, mark.text, color=color, fontsize=9, ha="center", zorder=11)
+    _text(ax, spot, mark.text, sum(scene.p[n] for n in mark.ends) / 2, color=color, fontsize=9,
+          ha="center", zorder=11)
 
 
 def draw_masses(ax, scene, dyn, pos):
@@ -248,126 +257,3 @@ def draw_masses(ax, scene, dyn, pos):
         start, end = gravity_arrow(ax.get_xlim(), ax.get_ylim(), scene.size, dyn.gravity)
         _arrow(ax, start, end, 9, arrowstyle="-|>", color="black", lw=1.5, shrinkA=0, shrinkB=0)
         _label(ax, start, "g", complex(6, -4), fontsize=10, zorder=9)
-
-
-# --- labels apart -----------------------------------------------------------------------------
-LABEL_GAP = 2.0         # pixels kept between two labels
-LABEL_STEP = 3.0        # pixels between the rings of positions tried
-LABEL_REACH = 40        # rings tried: a label moves at most LABEL_STEP * LABEL_REACH pixels
-
-
-def label_boxes(ax, renderer=None) -> list:
-    """(text artist, its bounding box in pixels) of every label drawn on ``ax``."""
-    renderer = renderer or ax.figure.canvas.get_renderer()
-    return [(t, t.get_window_extent(renderer)) for t in ax.texts
-            if t.get_visible() and t.get_text().strip()]
-
-
-def body_segments(ax, renderer=None):
-    """(segments, pads): every straight piece of the mechanism's lines and outlines (gid
-    BODY) in pixels, an (n, 4) array of x0, y0, x1, y1, and half each one's width (pixels)."""
-    import numpy as np
-    renderer = renderer or ax.figure.canvas.get_renderer()
-    pieces, pads = [], []
-    per_point = ax.figure.dpi / 72.0
-    for artist in list(ax.lines) + list(ax.patches):
-        if artist.get_gid() != BODY or not artist.get_visible():
-            continue
-        if hasattr(artist, "get_xydata"):
-            xy = artist.get_transform().transform(artist.get_xydata())
-        else:                                   # a polygon, closed
-            xy = artist.get_transform().transform(artist.get_path().vertices)
-        if len(xy) < 2:
-            continue
-        pieces.append(np.hstack([xy[:-1], xy[1:]]))
-        pads.append(np.full(len(xy) - 1, 0.5 * artist.get_linewidth() * per_point))
-    if not pieces:
-        return np.zeros((0, 4)), np.zeros(0)
-    return np.vstack(pieces), np.concatenate(pads)
-
-
-def crossing(boxes, segments, pads):
-    """For each box (x0, y0, x1, y1 in pixels, an (m, 4) array): whether a segment, widened
-    by its pad, passes through it (Liang-Barsky: the part of each segment P0 + t (P1 - P0),
-    t in [0, 1], inside the box is not empty)."""
-    import numpy as np
-    boxes = np.asarray(boxes, float)[:, None, :]
-    x0, y0, x1, y1 = (segments[None, :, i] for i in range(4))
-    lo_x, lo_y = boxes[..., 0] - pads, boxes[..., 1] - pads
-    hi_x, hi_y = boxes[..., 2] + pads, boxes[..., 3] + pads
-    dx, dy = x1 - x0, y1 - y0
-    t0 = np.zeros(np.broadcast(lo_x, x0).shape)
-    t1 = np.ones_like(t0)
-    outside = np.zeros(t0.shape, bool)
-    for p, q in ((-dx, x0 - lo_x), (dx, hi_x - x0), (-dy, y0 - lo_y), (dy, hi_y - y0)):
-        p = np.broadcast_to(p, t0.shape)
-        q = np.broadcast_to(q, t0.shape)
-        flat = p == 0
-        outside |= flat & (q < 0)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            r = np.where(flat, 0.0, q / np.where(flat, 1.0, p))
-        t0 = np.where(~flat & (p < 0), np.maximum(t0, r), t0)
-        t1 = np.where(~flat & (p > 0), np.minimum(t1, r), t1)
-    return (~outside & (t0 <= t1)).any(axis=-1)
-
-
-def place_labels(ax) -> None:
-    """Move the labels of ``ax`` apart, in the order they were drawn (pivots' names first,
-    then the vectors', the angles', the loads'): each label that would overlap one placed
-    before it, cross the mechanism's lines (:func:`body_segments`) or leave the axes goes
-    to the nearest position on rings around where it was drawn (8 to 64 directions a ring)
-    free of all three; where none is within reach, to the nearest free of the labels and
-    the axes' edge only.  Call it once the axes' layout is final: positions are in pixels."""
-    import math
-
-    import numpy as np
-    ax.apply_aspect()       # an equal-aspect axes takes its final box only when drawn
-    renderer = ax.figure.canvas.get_renderer()
-    frame = ax.get_window_extent(renderer)
-    segments, pads = body_segments(ax, renderer)
-    placed = []
-
-    def free(box):
-        return (box.x0 >= frame.x0 and box.x1 <= frame.x1 and box.y0 >= frame.y0 and
-                box.y1 <= frame.y1 and not any(box.padded(LABEL_GAP).overlaps(other)
-                                               for other in placed))
-
-    def clear(box, moves):
-        """Whether ``box`` moved by each of ``moves`` keeps off the mechanism's lines."""
-        shifted = np.array([[box.x0 + mx, box.y0 + my, box.x1 + mx, box.y1 + my]
-                            for mx, my in moves])
-        return ~crossing(shifted, segments, pads)
-
-    for text, box in label_boxes(ax, renderer):
-        if not (free(box) and clear(box, [(0.0, 0.0)])[0]):
-            move = None
-            for lines in (True, False):
-                for ring in range(1, LABEL_REACH + 1):
-                    r = ring * LABEL_STEP
-                    count = min(64, 8 * ring)
-                    moves = [(r * math.cos(2 * math.pi * i / count),
-                              r * math.sin(2 * math.pi * i / count)) for i in range(count)]
-                    if lines:
-                        moves = [m for m, ok in zip(moves, clear(box, moves)) if ok]
-                    move = next((m for m in moves if free(box.translated(*m))), None)
-                    if move is not None:
-                        break
-                if move is not None:
-                    break
-            if move is not None:
-                _shift(ax, text, *move)
-                box = box.translated(*move)
-        placed.append(box)
-
-
-def _shift(ax, text, dx, dy):
-    """Move ``text`` by (dx, dy) pixels: its offset for an annotation in offset points,
-    else its position in data coordinates."""
-    from matplotlib.text import Annotation
-    if isinstance(text, Annotation) and text.anncoords == "offset points":
-        scale = 72.0 / ax.figure.dpi
-        x, y = text.xyann
-        text.xyann = (x + dx * scale, y + dy * scale)
-        return
-    x, y = ax.transData.transform(text.get_position())
-    text.set_position(ax.transData.inverted().transform((x + dx, y + dy)))

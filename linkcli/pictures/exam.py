@@ -19,18 +19,21 @@ import cmath
 import math
 
 from linkcli.model.mechanism import FRAME
-from linkcli.texts.amounts import CLOSE, Writer
+from linkcli.texts.amounts import CLOSE, Writer, digits
 from linkcli.texts.bodies import fixed_line
 from linkcli.texts.loads import force_by_components
 from linkcli.texts.unknowns import unknown_datum
 from linkcli.pictures.drawing import (KNOWN, UNKNOWN, _arc, _arrow, _axial, _force, _line, _text,
                                       _torque, draw_elements, draw_masses, draw_mechanism, figure,
                                       set_limits)
+from linkcli.pictures.labels import place_labels
 from linkcli.pictures.scene import (Scene, disc_points, element_ends, greek, loads,
                                     used_points)
 
 DRIVER = "#1f3f99"
 DIMENSION = "#444444"
+STATED = 6          # significant digits of a length drawn as stated; longer ones are rounded
+ROUNDED = 3         # significant digits kept at least where a length is rounded
 
 
 def exam_figure(mech, lang="en", method="closed", dpi=100):
@@ -58,6 +61,7 @@ def exam_figure(mech, lang="en", method="closed", dpi=100):
     _axes_mark(ax, scene)
     ax.set_axis_off()
     fig.tight_layout()
+    place_labels(ax)
     return fig
 
 
@@ -95,8 +99,20 @@ def _lengths(ax, scene, w):
         def length(m):
             return abs(m.bodies[body.name].local[q] - m.bodies[body.name].local[p])
         unknown = unknown_datum(mech, length, mech.units.factor("length"))
-        _text(ax, _side(scene, a, b, 0.045), unknown or w.length(length(mech)),
+        _text(ax, _side(scene, a, b, 0.045), unknown or _dimension(w, length(mech)), (a + b) / 2,
               color=DIMENSION, fontsize=8, ha="center", va="center", zorder=9)
+
+
+def _dimension(w, si) -> str:
+    """A length as the exam prints it: a stated number whole ('220 mm', '0.035 m'), a
+    number that no short decimal writes (a length of sqrt(2) m) rounded to the report's
+    decimals, keeping at least ROUNDED significant digits."""
+    value = si / w.units.factor("length")
+    if digits(value) <= STATED:
+        return w.length(si)
+    places = max(w.mech.report.get("decimals", 1),
+                 ROUNDED - 1 - math.floor(math.log10(abs(value))))
+    return f"{w.num(round(value, places))} {w.units.names['length']}"
 
 
 def _guides(ax, scene, w):
@@ -113,8 +129,9 @@ def _guides(ax, scene, w):
             text = f"x = {w.length(p0.real)}"
         else:
             text = w.angle(cmath.phase(u) % (2 * math.pi))
-        at = scene.p[body.points[0]] + 0.3 * scene.size * u + 0.03 * scene.size * 1j * u
-        _text(ax, at, text, color=DIMENSION, fontsize=8, ha="center", va="center", zorder=9)
+        on = scene.p[body.points[0]] + 0.3 * scene.size * u
+        _text(ax, on + 0.03 * scene.size * 1j * u, text, on, color=DIMENSION, fontsize=8,
+              ha="center", va="center", zorder=9)
 
 
 def _anchors(ax, scene):
@@ -190,7 +207,8 @@ def _one_driver(ax, scene, w, d, q):
         spot = _side(scene, a, b, -0.05)       # the unknown's label is on the other side
         off = spot - (a + b) / 2
         ha = "center" if abs(off.real) < 0.3 * abs(off) else "left" if off.real > 0 else "right"
-        _text(ax, spot, value + (f", {rate}" if rate else ""), color=DRIVER, fontsize=9,
+        _text(ax, spot, value + (f", {rate}" if rate else ""), (a + b) / 2, color=DRIVER,
+              fontsize=9,
               ha=ha, va="center", zorder=11)
         if d.rate:
             sense = u if d.rate > 0 else -u
@@ -204,7 +222,7 @@ def _one_driver(ax, scene, w, d, q):
     start = point + 0.06 * scene.size * 1j * u
     _arrow(ax, start, start + 0.12 * scene.size * sense, 11, arrowstyle="-|>", color=DRIVER,
            lw=1.6, shrinkA=0, shrinkB=0, mutation_scale=12)
-    _text(ax, start + 0.06 * scene.size * 1j * u, value + (f", {rate}" if rate else ""),
+    _text(ax, start + 0.06 * scene.size * 1j * u, value + (f", {rate}" if rate else ""), point,
           color=DRIVER, fontsize=9, ha="center", va="center", zorder=11)
 
 
@@ -217,7 +235,8 @@ def _angle_mark(ax, scene, coordinate, text, **style):
     _line(ax, [tail, tail + 1.4 * radius], color=DRIVER, lw=0.8, ls=":", zorder=8)
     _arc(ax, tail, radius, min(0.0, phi), max(0.0, phi), color=DRIVER, lw=1.0, zorder=8)
     middle = cmath.rect(radius + 0.05 * scene.size, math.radians(phi / 2))
-    _text(ax, tail + middle, text, color=DRIVER, ha="center", va="center", zorder=11, **style)
+    _text(ax, tail + middle, text, tail + radius * middle / abs(middle), color=DRIVER,
+          ha="center", va="center", zorder=11, **style)
 
 
 def _spin(ax, scene, at, counter, text):
@@ -232,8 +251,8 @@ def _spin(ax, scene, at, counter, text):
            mutation_scale=12)
     away = at - scene.centroid(scene.mech.points)
     away = away / abs(away) if abs(away) else 1j
-    _text(ax, at + 0.1 * scene.size * away, text, color=DRIVER, fontsize=9, ha="center",
-          va="center", zorder=11)
+    _text(ax, at + 0.1 * scene.size * away, text, at + r * away, color=DRIVER, fontsize=9,
+          ha="center", va="center", zorder=11)
 
 
 def _coordinates(ax, scene):
@@ -252,7 +271,8 @@ def _coordinates(ax, scene):
         start = at + 0.06 * scene.size * 1j * u
         _arrow(ax, start, start + 0.1 * scene.size * u, 11, arrowstyle="-|>", color=DRIVER,
                lw=1.4, shrinkA=0, shrinkB=0, mutation_scale=12)
-        _text(ax, start + 0.13 * scene.size * u, greek(c.name), color=DRIVER, fontsize=10,
+        _text(ax, start + 0.13 * scene.size * u, greek(c.name), start + 0.1 * scene.size * u,
+              color=DRIVER, fontsize=10,
               fontstyle="italic", ha="center", va="center", zorder=11)
 
 
@@ -264,4 +284,5 @@ def _axes_mark(ax, scene):
     for u, name in ((1, "x"), (1j, "y")):
         _arrow(ax, o, o + length * u, 9, arrowstyle="-|>", color="black", lw=1.0, shrinkA=0,
                shrinkB=0, mutation_scale=10)
-        _text(ax, o + 1.25 * length * u, name, fontsize=9, ha="center", va="center", zorder=9)
+        _text(ax, o + 1.25 * length * u, name, o + length * u, fontsize=9, ha="center",
+              va="center", zorder=9)

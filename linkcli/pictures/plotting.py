@@ -17,11 +17,13 @@ import tempfile
 import numpy as np
 
 from linkcli.answers.quantities import angle_period, report_names, require_driver
+from linkcli.answers.quantities.drive import Drive
 from linkcli.runs.sweep.names import listing
 from linkcli.runs.sheet import evaluate, refuse_driving
 from linkcli.pictures.drawing import (COLORS, draw_elements, draw_loads, draw_masses,
                                       draw_mechanism, draw_polygon, figure)
-from linkcli.pictures.drawing import place_labels, set_limits
+from linkcli.pictures.drawing import set_limits
+from linkcli.pictures.labels import place_labels
 from linkcli.errors import InputError
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import split_rate
@@ -273,6 +275,8 @@ def _positions(mech, q, method="closed"):
     cannot assemble; a vibration problem takes the closed form only."""
     refuse_driving(mech, method=method)
     solver = solver_for(mech, method)
+    if len(mech.coordinates) > 1 and mech.elements is None and np.ndim(q):
+        q = Drive(mech)(q, 0.0, 0.0)[0]        # several drivers: the others the file's
     kin = solver.positions(q)
     solver.check(kin, velocities=False)
     return kin

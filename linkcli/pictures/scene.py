@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from linkcli.answers.formats import fmt
 from linkcli.forces.motion import rigid_point
 from linkcli.forces.pairs import line_direction
 from linkcli.model.mechanism import FRAME
@@ -270,6 +271,12 @@ class Vector:
     phi: float
     angle_at: complex
 
+    @property
+    def arc_middle(self) -> complex:
+        """The middle of the angle's arc."""
+        bis = math.radians(self.phi / 2)
+        return self.tail + self.radius * complex(math.cos(bis), math.sin(bis))
+
 
 def vectors(scene) -> list[Vector]:
     """The polygon's vectors at this position; vectors of zero length are left out."""
@@ -310,7 +317,7 @@ def loads(scene, values, units_text) -> list[LoadSymbol]:
     out = []
     for load in scene.mech.loads.values():
         value, unknown = values.get(load.name), load.value is None
-        shown = "?" if value is None else f"{value:.1f}"
+        shown = "?" if value is None else fmt(value, 1)     # never '-0.0'
         text = f"{load.name} = {shown} {units_text.get(load.name, '')}" + \
             (" (unknown)" if unknown else "")
         sign = 1.0 if value is None or value >= 0 else -1.0

@@ -22,8 +22,8 @@ from linkcli.answers.quantities.vibration import FREQUENCY_DIM, Answer, analyse,
 from linkcli.errors import InputError, SolveError
 from linkcli.forces import vibration as vib
 from linkcli.model.units import ANGLE_DIM
-from linkcli.pictures.drawing import (COLORS, draw_elements, draw_mechanism, figure,
-                                      place_labels, set_limits)
+from linkcli.pictures.drawing import COLORS, draw_elements, draw_mechanism, figure, set_limits
+from linkcli.pictures.labels import place_labels
 from linkcli.pictures.plotting import (IMAGE_FORMATS, _save_figure, _tell, _wrap, check_output,
                                        parse_sweep)
 from linkcli.pictures.scene import Scene, actuators, links
@@ -283,7 +283,7 @@ def free(mech, span: str, names, output: str, dpi: int = 100) -> None:
     _require_vibration(mech, "a time response")
     analysis = analyse(mech)
     lin = analysis.lin
-    if not mech.elements.initial and mech.elements.initial_from[0] == "equilibrium":
+    if not mech.elements.started:
         raise InputError("a time response starts from 'initial:'", file=mech.file,
                          key="initial", hint="e.g. initial: {theta: 2, theta_dot: 0}")
     t = _times(lin, span)

@@ -20,6 +20,7 @@ from linkcli.answers.memory import LONG, keep_freed_memory
 from linkcli.answers.quantities import plan_for, require_driver
 from linkcli.answers.quantities.plan import BLOCK, as_number
 from linkcli.kinematics.solvers import solver_for
+from linkcli.kinematics.straight import SHORT
 from linkcli.runs import design
 from linkcli.runs.sheet import evaluate, route
 
@@ -86,5 +87,5 @@ class Evaluator:
             return None
         if qs.size >= LONG:
             keep_freed_memory()
-        table = fast.array(qs, w, al)
+        table = fast.short(qs, w, al) if qs.size <= SHORT else fast.array(qs, w, al)
         return table[:self._count] if self._points and table is not None else table

@@ -57,6 +57,11 @@ def element_lines(w) -> list:
         verb = {"en": ("is", "are"), "it": ("è", "sono")}[w.lang][len(springs or ()) > 1]
         out.append(w.w[key].format(values=", ".join(values),
                                    springs=f"{', '.join(springs or ())} {verb}"))
+    if el.initial_mode is not None:
+        k, j, amplitude = el.initial_mode
+        c = w.mech.coordinates[j]
+        out.append(w.w["initial_mode"].format(mode=k + 1, coordinate=c.name,
+                                              value=_coordinate_offset(w, c, amplitude)))
     if el.equilibrium == "figure":
         out.append(w.w["equilibrium_figure"])
     return out

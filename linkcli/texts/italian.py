@@ -31,6 +31,19 @@ def comma(text: str) -> str:
 
 #: English phrase (regular expression) -> Italian, applied in this order to each line
 RULES = [(re.compile(pattern), italian) for pattern, italian in (
+    # the cautions of the figure check, written on the line of the group they concern
+    (r": warning: the solved position is far from the figure \((\S+) of the mechanism's size "
+     r"is (.+?)\): (.+); check the lengths, the shapes and the driver's points",
+     r": attenzione: la posizione risolta è lontana dalla figura (il \1 della dimensione del "
+     r"meccanismo è \2): \3; controllare le lunghezze, le forme e i punti del movente"),
+    (r"(?<=meccanismo è )(.+?\): )(.+)(?=; controllare)",
+     lambda m: m.group(1) + m.group(2).replace(" by ", " di ")),
+    (r": warning: the figure's (\S+) is nearly as far from both assemblies of (.+) "
+     r"\((\S+) and (\S+ \S+)\): the branch may not be the one drawn",
+     r": attenzione: il punto \1 della figura è quasi ugualmente lontano dai due assemblaggi di "
+     r"\2 (\3 e \4): il ramo potrebbe non essere quello disegnato"),
+    (r": warning: ", ": attenzione: "),
+    (r": error: ", ": errore: "),
     # Grübler's count
     (r"Grübler's count \(planar\)", "Conteggio di Grübler (moto piano)"),
     (r"\bbodies m = ", "corpi m = "),
@@ -87,7 +100,8 @@ RULES = [(re.compile(pattern), italian) for pattern, italian in (
     (r"\bdyad (\w+): (\S+) from ", r"diade \1: \2 da "),
     (r"\(([^()]*), length\)", r"(\1, lunghezza)"),
     (r"\b(\S+) on the guide ", r"\1 sulla guida "),
-    (r"\bguid[ae] through: ([^,]+), angle: (\S+)", r"guida per \1 ad angolo \2"),
+    (r"\bguid[ae] through: (\[[^\]]*\]|[^,]+), angle: (\S+)", r"guida per \1 ad angolo \2"),
+    (r"\bguid[ae] along: (\[[^\]]*\]), offset: (\S+)", r"guida lungo \1, scostata di \2"),
     (r"\bguid[ae] along: ", "guida lungo "),
     (r"\bguide (?=\S*:)", "guida "),
     (r"(?:(?<= da )|(?<= and ))contacts (?=\S)", "contatti "),     # a dyad's side
@@ -113,15 +127,23 @@ RULES = [(re.compile(pattern), italian) for pattern, italian in (
     (r"\(rolling outside disc (\S+)\)", r"(rotolamento fuori dal disco \1)"),
     (r"\(sliders on turning guides add Coriolis terms to the accelerations\)",
      "(i pattini su guide che ruotano aggiungono i termini di Coriolis alle accelerazioni)"),
+    (r"^(\s*)(\S+) is reached through (.+) \(Newton's method on the angle; the decomposition "
+     r"places the substitute; another takes over where it stops\)",
+     r"\1\2 si raggiunge attraverso \3 (metodo di Newton sull'angolo; la scomposizione "
+     r"colloca il sostituto; un altro subentra dove si ferma)"),
     # statics
     (r"^Statics by virtual work: sum of load powers = 0$",
      "Statica con i lavori virtuali: somma delle potenze dei carichi = 0"),
     (r"\(no loads\)", "(nessun carico)"),
+    (r"^  motion of (\S+) alone: ", r"  moto del solo \1: "),
     # power balance (dynamics)
     (r"^Power balance \(inverse dynamics\): ", "Bilancio delle potenze (dinamica inversa): "),
     (r"\bat the file's position: ", "nella posizione del file: "),
     (r"\(the unknown load\)", "(il carico incognito)"),
     (r"\brolling disc (\S+): ", r"disco \1 che rotola: "),
+    (r"\bfriction circle at (\S+): (.*), (\S+) turning on the pin fixed in (\S+)$",
+     r"circolo d'attrito in \1: \2, \3 che ruota sul perno solidale a \4"),
+    (r"\brolling resistance of (\S+): ", r"attrito volvente di \1: "),
     # vibrations
     (r"^Energies \(SI units; s is each element's measure, s0 its free value\)$",
      "Energie (unità SI; s è la misura di ogni elemento, s0 il suo valore a riposo)"),
@@ -162,6 +184,18 @@ RULES = [(re.compile(pattern), italian) for pattern, italian in (
     (r"^  damped: the extremes of (.*) where (.*), until the modes' envelope falls below the "
      r"largest found$", r"  smorzata: gli estremi di \1 dove \2, finché l'inviluppo dei modi "
      r"scende sotto il massimo trovato"),
+    (r"^Peaks of the frequency response: (.*) by Brent's method between samples where its "
+     r"sign changes$", r"Picchi della risposta in frequenza: \1 con il metodo di Brent tra i "
+     r"campioni dove cambia segno"),
+    (r"\(damping couples the modes: each pair of roots is the undamped mode its motion is "
+     r"most made of; shares (.*)\)$", r"(lo smorzamento accoppia i modi: ogni coppia di "
+     r"radici è il modo non smorzato di cui il suo moto è fatto di più; quote \1)"),
+    (r"\bthe static equilibrium is unstable \(a (maximum|saddle point) of the potential "
+     r"energy\): K has the negative eigenvalue (.*) \(mode mostly along (\S+)\), so there is "
+     r"no natural frequency", lambda m: "l'equilibrio statico è instabile (un " + (
+         "massimo" if m.group(1) == "maximum" else "punto di sella") + " dell'energia "
+     "potenziale): K ha l'autovalore negativo " + m.group(2) + " (modo soprattutto lungo "
+     + m.group(3) + "), quindi non c'è frequenza propria"),
     # a design question
     (r"^Design \(find\): the unknowns' values that give the targets$",
      "Progetto (find): i valori delle incognite che danno i valori richiesti"),
@@ -170,6 +204,16 @@ RULES = [(re.compile(pattern), italian) for pattern, italian in (
     (r"\bscan and Brent's method: (\S+) evaluations of the file",
      r"scansione e metodo di Brent: \1 valutazioni del file"),
     (r"^  solution: ", "  soluzione: "),
+    (r"^  unknown (\S+) from ", r"  incognita \1 da "),
+    (r"\bleast squares within the intervals: (\S+) evaluations of the file",
+     r"minimi quadrati negli intervalli: \1 valutazioni del file"),
+    (r"\bPowell's hybrid method from the start values: (\S+) evaluations of the file",
+     r"metodo ibrido di Powell dai valori iniziali: \1 valutazioni del file"),
+    (r"^  roots: (.*); chosen by ", r"  radici: \1; scelta con "),
+    (r"^  no answer at the (\d+) samples from (.+) to (.+?): ",
+     r"  nessuna risposta nei \1 campioni da \2 a \3: "),
+    (r"\bcannot assemble (.+) at (q = .+?): the links fall short by ",
+     r"non si assembla \1 a \2: i membri non arrivano per "),
     (r"\bW_motor\b", "W_motrice"),
     (r"\bW_resistant\b", "W_resistente"),
     (r"\bW_lost\b", "W_perduta"),

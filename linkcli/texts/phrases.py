@@ -256,6 +256,10 @@ PHRASES = {
         "initial conditions (from the figure): {values}",
         "condizioni iniziali (dalla figura): {values}",
     ),
+    "initial_mode": (
+        "released from rest in mode {mode}, {coordinate} = {value}",
+        "rilasciato da fermo nel modo {mode}, {coordinate} = {value}",
+    ),
     "initial_unstretched": (
         "initial conditions (from where {springs} unstretched): {values}",
         "condizioni iniziali (da dove {springs} a riposo): {values}",

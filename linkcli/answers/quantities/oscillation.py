@@ -226,6 +226,8 @@ def initial_state(analysis) -> tuple[np.ndarray, np.ndarray]:
     elements = mech.elements
     x0 = np.zeros(len(lin.free))
     v0 = np.zeros(len(lin.free))
+    if elements.initial_mode is not None:
+        return mode_start(analysis), v0
     for c, (dx, dv) in elements.initial.items():
         if c in lin.free:
             x0[lin.free.index(c)], v0[lin.free.index(c)] = dx, dv
@@ -235,6 +237,38 @@ def initial_state(analysis) -> tuple[np.ndarray, np.ndarray]:
     elif start == "unstretched":
         x0 += unstretched(analysis, springs) - lin.eq.q[lin.free]
     return x0, v0
+
+
+def mode_start(analysis) -> np.ndarray:
+    """x0 = a u_k / u_jk: mode k's shape scaled so that coordinate j's offset is a
+    (``initial: {mode, q: a}``), refused where the shape is not one (modes of one
+    frequency) or j does not move in it, or is not free."""
+    mech = analysis.mech
+    lin = analysis.lin
+    k, j, amplitude = mech.elements.initial_mode
+    name = mech.coordinates[j].name
+    where = dict(file=mech.file, key=f"initial.{name}")
+    if j not in lin.free:
+        raise InputError(f"the start in mode {k + 1} scales the mode by {name}, whose "
+                         "motion is imposed (a support): it is in no mode", **where,
+                         hint="give the amplitude of a free coordinate")
+    if k >= len(lin.free):
+        raise InputError(f"there is no mode {k + 1}: the system has {len(lin.free)} free "
+                         "coordinates", **where, hint=f"mode 1-{len(lin.free)}")
+    found = analysis.modes()
+    i = lin.free.index(j)
+    if found.repeated[k]:
+        raise SolveError(f"modes {', '.join(str(m + 1) for m in [k] + found.repeated[k])} "
+                         "share a natural frequency, so the shape of a start in one of them "
+                         "is any combination of theirs", **where,
+                         hint="give the initial offsets of every coordinate instead")
+    if not found.moves(i, k):
+        raise SolveError(f"{name} does not move in mode {k + 1} (less than "
+                         f"{found.still[k]:.1e} of its largest component), so its amplitude "
+                         "cannot scale the mode", **where,
+                         hint=f"give the amplitude of a coordinate that moves in mode {k + 1}")
+    shape = np.asarray(found.vectors[:, k], dtype=float)
+    return amplitude * shape / shape[i]
 
 
 def unstretched(analysis, names) -> np.ndarray:
@@ -281,7 +315,7 @@ def largest(analysis, quantity) -> osc.Largest:
     from ``initial:``, by superposition (forces.oscillation.largest)."""
     mech = analysis.mech
     lin = analysis.lin
-    if not mech.elements.initial and mech.elements.initial_from[0] == "equilibrium":
+    if not mech.elements.started:
         raise InputError(f"'{quantity.name}' is of the free vibration from 'initial:', and "
                          "the file has none", file=mech.file, key=f"quantities.{quantity.name}",
                          line=quantity.line, hint="e.g. initial: {x: 10, x_dot: 0}")

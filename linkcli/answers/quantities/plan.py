@@ -22,7 +22,7 @@ from linkcli.input.efficiency import EFFICIENCY
 from linkcli.errors import InputError, LinkcliError, SolveError
 from linkcli.kinematics.compiled import X as X_PROBE, Y as Y_PROBE, compiled, program_of
 from linkcli.kinematics.solvers import solver_for
-from linkcli.kinematics.straight import straight_of
+from linkcli.kinematics.straight import SHORT, straight_of
 from linkcli.model.mechanism import REPORT_SECTIONS, VIBRATION, split_rate
 from linkcli.input.quantities import LEVEL
 from linkcli.input.gears import GEARING
@@ -285,7 +285,7 @@ class Plan:
         if qs.ndim != 1 or qs.size > BLOCK or not qs.size or w is None or al is None or \
                 any(np.ndim(x) and np.shape(x) != qs.shape for x in (w, al)):
             return None
-        table = straight.array(qs, w, al)
+        table = straight.short(qs, w, al) if qs.size <= SHORT else straight.array(qs, w, al)
         return None if table is None else \
             self._tabled(mech, table, Later(solver, qs, w, al, straight.order))
 
@@ -323,6 +323,8 @@ class Plan:
         table = np.empty((len(self.names), qs.size))
 
         straight = self._straight_of(solver, order, now=True)
+        if straight is not None:
+            straight.function(True)     # written once, before the threads share it
 
         def solve(lo):
             hi = min(qs.size, lo + BLOCK)

@@ -64,9 +64,10 @@ class Context:
         reactions = self._cache.get("reactions")
         return (list(reactions.cautions) if reactions is not None else []) + self.notes
 
-    def unit(self):
-        """The velocities for a unit driver rate (q' = 1) at the same positions."""
-        return self._once("unit", lambda: unit_rates(self._solver(), self.kin))
+    def unit(self, j: int = 0):
+        """The velocities for a unit rate of driver ``j`` (q' = 1; the others at rest) at the
+        same positions."""
+        return self._once(("unit", j), lambda: unit_rates(self._solver(), self.kin, j))
 
     def figure(self) -> dict:
         """The positions of the figure: solved at the file's own driver value."""
@@ -293,13 +294,14 @@ def _spin_at(mech, body, disc, kin):
 
 def velocity_ratio(quantity, context):
     """d(NAME)/dq = NAMEdot / qdot: NAME's rate at a unit driver rate, in NAME's unit per
-    driver unit."""
+    driver unit; of the driver named ``b`` (the others at rest) with several drivers."""
     mech = context.mech
     units = mech.units
     target = mech.quantities[quantity.a]
-    value, base, _ = si_value(target, 1, context.unit(), context)
+    j = mech.driver_index(quantity.b)
+    value, base, _ = si_value(target, 1, context.unit(j), context)
     unit, factor = units.display(base, 0)
     if target.unit:
         unit, factor = override_unit(target.unit, base, 0)
-    q_unit, q_factor = units.display(mech.driver.base, 0)
+    q_unit, q_factor = units.display(mech.coordinates[j].base, 0)
     return np.asarray(value * q_factor / factor + 0 * context.kin.q) + 0.0, f"{unit}/{q_unit}"

@@ -25,7 +25,8 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
     if design.unsolved(mech):       # each trial by the method asked
         mech = design.resolved(mech, evaluate, method, tol)
     names, solve, exprs, solved, limits = route(mech, names)
-    if not (exprs or solved or limits) and mech.elements is None and mech.design is None:
+    if not (exprs or solved or limits) and mech.elements is None and mech.design is None \
+            and mech.clutch is None:
         # the names themselves, by the driver's path (quantities.evaluate's, its plan kept)
         return quantities.plan_for(mech, solve, method, tol).evaluate(mech, q, qdot, qddot)
     result = _evaluate(mech, q, qdot, qddot, solve, method, tol, limits)

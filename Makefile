@@ -52,8 +52,9 @@ explore: $(VENV)/.installed-test
 ## bench: speed against hand-written NumPy and pylinkage, and of linkcli's compiled loop
 ## (numba and pylinkage installed if PyPI is reachable) at 360 ... 10^7 positions, with
 ## accuracy and peak memory; where a call's time goes at 360; the periodic regime found directly
-## against a hand-written solve_ivp of the transient; parameter sweeps and design
-## questions (tables and charts in benchmarks/out/; a few minutes)
+## against a hand-written solve_ivp of the transient, a machine's start-up against one of the
+## start-up; parameter sweeps and design questions (tables and charts in benchmarks/out/; a
+## few minutes)
 bench: $(VENV)/.installed-test
 	$(BIN)/python -m pip install --quiet pylinkage numba || echo "peers not installed: timed without them"
 	$(BIN)/python benchmarks/speed.py
@@ -61,6 +62,7 @@ bench: $(VENV)/.installed-test
 	$(BIN)/python benchmarks/vibration.py
 	$(BIN)/python benchmarks/regime.py
 	$(BIN)/python benchmarks/questions.py
+	$(BIN)/python benchmarks/machine_startup.py
 	$(BIN)/python benchmarks/memory.py --quick
 
 ## bench-full: also every solver against a 50-digit reference and sweeps of 10^7 positions

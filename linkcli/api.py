@@ -52,7 +52,7 @@ class Linkage:
         return evaluate(self.model, q, qdot, qddot, names=names, method=method, tol=tol)
 
     def sweep(self, q, qdot=None, qddot=None, *, names=None, method="closed",
-              tol=None) -> Sweep:
+              tol=None, ties=None) -> Sweep:
         """Solve at every driver value of the 1-D array ``q`` (display units), keeping the
         values that solve where others do not (:meth:`solve` refuses the whole array).
 
@@ -63,9 +63,12 @@ class Linkage:
         locks the mechanism, an unknown load that does no work, a pair at rest: ``kind``,
         ``group``, driver values ``lo``..``hi``, ``text()``) and the branch points passed.
         ``qdot`` and ``qddot`` are one value each (default the file's); raises only where
-        no driver value at all can be assembled, or on invalid input.
+        no driver value at all can be assembled, or on invalid input.  With several drivers
+        ``q`` is the first's, the others held at the file's values and rates or set by
+        ``ties`` {NAME: expression of the first, display units} (``sweep --tie``).
         """
-        return sweep(self.model, q, sweep_names(self.model, names), method, tol, qdot, qddot)
+        return sweep(self.model, q, sweep_names(self.model, names), method, tol, qdot, qddot,
+                     ties=ties)
 
     def evaluator(self, names=None, *, method="closed", tol=None):
         """The answers ``names`` (default: the report's) as a function of the driver, made

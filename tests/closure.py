@@ -163,9 +163,31 @@ def conditioning(kin):
     return np.min(values, axis=0) if values else np.ones(np.shape(kin.q))
 
 
+def along_first(mech, values):
+    """The solvers' input for ``values`` of the first driver: ``values`` itself for one
+    driver; with several drivers (``drivers:``), the other drivers held at the file's
+    values (a rate or an acceleration passes ``zeros`` for them through ``held=0``)."""
+    return _with_others(mech, values, None)
+
+
+def rates_along_first(mech, values):
+    """The drivers' rates (or accelerations) for a motion of the first driver alone."""
+    return _with_others(mech, values, 0.0)
+
+
+def _with_others(mech, values, held):
+    cs = getattr(mech, "model", mech).coordinates
+    if len(cs) == 1:
+        return values
+    values = np.asarray(values, dtype=float)
+    return (values,) + tuple(np.full_like(values, c.value if held is None else held)
+                             for c in cs[1:])
+
+
 def shipped():
-    """Shipped mechanism files with a driver that the closed form solves (class-III files
-    need Newton; vibration problems, with coordinates, are tested by their jets)."""
+    """Shipped mechanism files with drivers that the closed form solves (class-III files
+    need Newton; vibration problems, with coordinates, are tested by their jets).  With
+    several drivers the tests move the first one and hold the others (``along_first``)."""
     import glob
     from linkcli.errors import StructureError
     out = []

@@ -152,8 +152,8 @@ class Similarity:
             raise NotUnderstood(path, why)
 
     # the file -----------------------------------------------------------------------------
-    PASS = {"title", "source", "notes", "units", "k", "params", "quantities", "report",
-            "actuators", "statement"}
+    PASS = {"title", "source", "notes", "units", "k", "params", "report", "actuators",
+            "statement"}
     DROP = {"keys", "quiz"}
 
     def apply(self) -> dict:
@@ -277,6 +277,39 @@ class Similarity:
         return self._each(value, path, self.load)
 
     def load(self, spec, path):
+        spec = dict(spec)
+        window = {"over": self.window(spec.pop("over"), path + ("over",))} \
+            if "over" in spec else {}
+        return {**self.load_itself(spec, path), **window}
+
+    def window(self, v, path):
+        """A load's window of the driver (machine dynamics): an angle turns with the figure,
+        a length of an actuator or between points stays (scaled), an axis' coordinate is
+        tied to the frame's axes."""
+        kind = next(k for k in ("angle", "length", "x", "y") if k in self.doc["driver"])
+        if kind == "angle":
+            return [self.angle(a) for a in v]
+        if kind != "length":
+            self.no_turn(path, "a window along the frame's axis")
+            return [plus(self.length(a), self.t[0 if kind == "x" else 1]) for a in v]
+        return [self.length(a) for a in v]
+
+    def motor_torque(self, v, path):
+        """A motor's torque (s^2); an expression reads the driver q, which turns with the
+        figure for an angle driver: q of the new file is q + theta."""
+        if isinstance(v, str) and re.search(r"\bq\b", v):
+            kind = next(k for k in ("angle", "length", "x", "y") if k in self.doc["driver"])
+            if kind == "angle" and self.theta:
+                v = re.sub(r"\bq\b", f"(q - {self.theta!r})", v)
+            elif kind in ("x", "y"):
+                self.no_turn(path, "a torque of the driver along the frame's axis")
+                offset = self.t[0 if kind == "x" else 1]
+                v = re.sub(r"\bq\b", f"((q - {offset!r})/{self.s!r})", v)
+            elif kind == "length" and self.s != 1:
+                v = re.sub(r"\bq\b", f"(q/{self.s!r})", v)
+        return self.length(v, 2)
+
+    def load_itself(self, spec, path):
         kind = spec.get("type")
         s = lambda v, p: self.length(v)                         # noqa: E731  forces: s
         if kind == "force":
@@ -311,6 +344,15 @@ class Similarity:
                                            "value": lambda v, p: self._known(v, -1),
                                            "diameter": s,
                                            "area": lambda v, p: self.length(v, 2)})
+        if kind == "brake":
+            return self._keys(spec, path, {"type": None, "on": None,
+                                           "value": lambda v, p: self.length(v, 2)})
+        if kind == "motor":         # torques s^2; speeds (angular) stay
+            torque = lambda v, p: self.length(v, 2)             # noqa: E731
+            return self._keys(spec, path, {
+                "type": None, "on": None, "stall": torque, "no_load": None, "speeds": None,
+                "torques": lambda v, p: [self.length(a, 2) for a in v],
+                "torque": self.motor_torque})
         raise NotUnderstood(path + ("type",), f"load type {kind}")
 
     def _known(self, v, power):
@@ -471,6 +513,25 @@ class Similarity:
             out[key] = self.length(moved, 0 if kind == "angle" else 1)
         return out
 
+    def sec_quantities(self, value, path):
+        """Quantities are answers, kept; a flywheel's radius of gyration is a length."""
+        def quantity(spec, p):
+            if isinstance(spec, dict) and "flywheel" in spec and "radius" in spec:
+                return dict(spec, radius=self.length(spec["radius"]))
+            return spec
+        return self._each(value, path, quantity)
+
+    def sec_motion(self, spec, path):
+        """The motion of a machine: times and speeds kept (time and angles are), a diagram's
+        scale of torque as a torque (s^2), its angle, areas and coefficients pure numbers."""
+        def regime(v, p):
+            return self._keys(v, p, {
+                "mean_speed": None, "areas": None,
+                "scale": lambda w, q: self._keys(w, q, {"torque": lambda x, r: self.length(x, 2),
+                                                        "angle": None})})
+        return self._keys(spec or {}, path, {"until": None, "regime": regime, "flywheel": None,
+                                             "turns_per_cycle": None})
+
     def sec_find(self, spec, path):
         """Unknowns are params (used where they are, so never scaled); a target scales as
         its unit's length power: the unit written with it, else its quantity's ``unit``, else
@@ -515,6 +576,8 @@ KIND_POWER = {"natural_frequency": 0, "natural_period": 0, "damped_frequency": 0
 #: kinds of an answer about another (NAME): a rigid motion leaves it alone where it leaves
 #: NAME alone or turns it (an angle's swing, the crank's sweep between its extremes)
 OF_ANOTHER = {"stroke", "stroke_time", "time_ratio"}
+#: machine dynamics' quantity kinds (docs/machines.md)
+MACHINE = {"reduced_inertia", "reduced_inertia_slope", "reduced_torque", "motion"}
 #: quantity kinds whose answers a rigid motion of the figure leaves alone
 INVARIANT = {
     "length", "speed", "acceleration", "relative_speed", "relative_acceleration",
@@ -570,12 +633,18 @@ def frame_class(doc, name, seen=()):
         return None
     if not isinstance(spec, dict):
         return None
-    kinds = [k for k in spec if k not in ("unit", "signed", "decimals")]
+    kinds = [k for k in spec if k not in ("unit", "signed", "decimals", "radius")]
     if not kinds:
         return None
     kind = kinds[0]
+    if kind in MACHINE:             # J*, Q, the motion in time: none sees the frame's axes
+        return "invariant"
     if kind in ("angle", "rotation"):
         return "invariant" if order else "angle"
+    if kind == "regime":                    # positions are the driver's angle, turned
+        return "angle" if str(spec[kind]).startswith("at_") else "invariant"
+    if kind == "flywheel":
+        return "invariant"
     if kind in OF_ANOTHER and name not in seen:
         inner = frame_class(doc, spec[kind], seen + (name,))
         return "invariant" if inner in ("invariant", "angle") else None

@@ -46,7 +46,7 @@ def slider_crank(motor=True, flywheel=0.0):
 
 def integrate(cycle, q0, w0, cycles):
     """The transient from (q0, w0) in time, solve_ivp of J q'' + 1/2 J' w^2 = Q; the speeds
-    over the last cycle (max, min, true mean)."""
+    over the last cycle (max, min, average: the period over the cycle's time)."""
     from scipy.integrate import solve_ivp
 
     def rhs(t, y):

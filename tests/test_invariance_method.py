@@ -263,8 +263,21 @@ def _turns_disagree(linkage, newton_solver, q, q0, rows):
     return out
 
 
+#: files whose whole sweeps cost Newton's continuation too long for make test (make explore
+#: sweeps them): a disc turning ten times as fast as the driver takes thousands of small
+#: steps over the sweep's three turns; tests/test_belt_slip.py compares the two methods at
+#: a few positions of these trains
+EXPLORE_ONLY = {
+    "khurmi-11-1-belt-slip.yaml": "a dynamo at 9.6 times the engine's speed (18 s)",
+    "sarthaks-belt-slip-dynamo.yaml": "a dynamo at 9.5 times the engine's speed (18 s)",
+    "khurmi-13-epicyclic-annulus-fixed.yaml": "a sun at 3.25 times the arm's speed (7 s)",
+}
+
+
 @pytest.mark.parametrize("path", FILES, ids=[os.path.relpath(f, ROOT) for f in FILES])
 def test_the_methods_agree_over_whole_sweeps(path):
+    if not EXPLORE and os.path.basename(path) in EXPLORE_ONLY:
+        pytest.skip(f"make explore: {EXPLORE_ONLY[os.path.basename(path)]}")
     linkage, _, newton = _pair(path)
     for q in _grids(linkage, newton):
         assert disagreements(linkage, newton, q) == []

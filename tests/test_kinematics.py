@@ -12,8 +12,8 @@ import pytest
 
 import linkcli
 
-from closure import (CASE_IDS, CASES, assembled, conditioning, load_case, q_factor, shipped,
-                     step, sweep)
+from closure import (CASE_IDS, CASES, along_first, assembled, conditioning, load_case, q_factor,
+                     rates_along_first, shipped, step, sweep)
 
 RTOL = 1e-6
 
@@ -21,11 +21,11 @@ RTOL = 1e-6
 def _fd_setup(mech, q):
     solver = mech.solver()
     h = step(mech)
-    ones = np.ones_like(q)
-    kin = solver.velocities(solver.positions(q), ones)
-    solver.accelerations(kin, np.zeros_like(q))
-    plus = solver.velocities(solver.positions(q + h), ones)
-    minus = solver.velocities(solver.positions(q - h), ones)
+    ones = rates_along_first(mech, np.ones_like(q))
+    kin = solver.velocities(solver.positions(along_first(mech, q)), ones)
+    solver.accelerations(kin, rates_along_first(mech, np.zeros_like(q)))
+    plus = solver.velocities(solver.positions(along_first(mech, q + h)), ones)
+    minus = solver.velocities(solver.positions(along_first(mech, q - h)), ones)
     ok = assembled(kin) & assembled(plus) & assembled(minus) & (conditioning(kin) > 0.1)
     return kin, plus, minus, h, ok
 

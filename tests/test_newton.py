@@ -8,14 +8,14 @@ import pytest
 
 import linkcli
 from linkcli.cli import main
-from linkcli.errors import AssemblyError, StructureError
+from linkcli.errors import AssemblyError, InputError, StructureError
 from linkcli.kinematics.newton import NewtonSolver
 from linkcli.answers.quantities import report_names
 
 from conftest import MECHANISMS
 
 sys.path.insert(0, os.path.dirname(__file__))
-from closure import shipped  # noqa: E402
+from closure import along_first, rates_along_first, shipped  # noqa: E402
 
 TRIAD = os.path.join(MECHANISMS, "triad-class3.yaml")
 DEG = np.pi / 180
@@ -56,7 +56,8 @@ def _sweep_around(mech):
     q0 = mech.driver.value
     span = 10 * DEG if mech.driver.kind == "angle" else 0.05 * abs(q0)
     q = q0 + np.linspace(-span, span, 9)
-    kin = solver.velocities(solver.positions(q), np.ones_like(q))
+    kin = solver.velocities(solver.positions(along_first(mech, q)),
+                            rates_along_first(mech, np.ones_like(q)))
     ok = np.ones(q.shape, bool)
     for short in kin.short.values():
         ok &= ~(np.broadcast_to(short, q.shape) > 0)
@@ -68,6 +69,10 @@ def _sweep_around(mech):
 @pytest.mark.parametrize("path", _closed_form_files(), ids=os.path.basename)
 def test_newton_agrees_with_closed_form(path):
     mech = linkcli.load(path)
+    if len(mech.model.coordinates) > 1:     # several drivers: Newton refuses them by name
+        with pytest.raises(InputError, match="one driver; this one has"):
+            mech.solve(names=report_names(mech), method="newton")
+        return
     q_si = _sweep_around(mech)
     assert q_si.size >= 3
     factor = mech.units.display("angle" if mech.driver.kind == "angle" else "length", 0)[1]

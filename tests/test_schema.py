@@ -194,6 +194,9 @@ _ALWAYS_LOADER = [           # messages of rules that need the rest of the file
     r"^the values of '.*' are given in",
     r"^the two modes of a beat period must differ",
     r"^'unstretched' names no spring",
+    # the periodic regime (input.regime): a sum of the areas, a cycle of an angle driver
+    r"^the areas add up to ",
+    r"turns of an angle driver",
     # a unit written as a product of the tables' units ('N s/m', 'mm/s^2') is free text in the
     # schema: only the loader can tell a product of units from an unknown word
     r"^unknown unit '[^']*'$",

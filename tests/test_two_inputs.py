@@ -169,7 +169,9 @@ def test_driver_and_drivers_together_are_refused(tmp_path):
     path = tmp_path / "both.yaml"
     path.write_text(FOURBAR + "driver: {angle: [O, A], value: 90}\n", encoding="utf-8")
     code, _, err = run(["solve", str(path)])
-    assert code == 2 and "key 'drivers'" in err and "not both 'driver' and 'drivers'" in err
+    # the second of the two in the file's order is refused, at its own line
+    assert code == 2 and "both.yaml:10, key 'driver'" in err
+    assert "not both 'drivers' and 'driver'" in err
 
 
 # --- sweeps over one driver ---------------------------------------------------------------
@@ -202,6 +204,15 @@ def test_a_tied_sweep_row_is_the_file_solved_with_the_tie_written_in(tmp_path):
     solved = {line.split(",")[0]: float(line.split(",")[1]) for line in out.splitlines()[1:]}
     for name in names.split(","):
         assert row[name] == pytest.approx(solved[name], rel=1e-9, abs=1e-9)
+
+
+def test_the_python_sweep_takes_ties_as_the_command_does():
+    path = os.path.join(DATA, "five-bar.yaml")
+    rows = _csv(["sweep", path, "--from", "80", "--to", "90", "--steps", "1", "--names",
+                 "yBdot", "--tie", "phi2=150-phi1"])
+    swept = linkcli.load(path).sweep(np.array([80.0, 90.0]), names=["yBdot"],
+                                     ties={"phi2": "150-phi1"})
+    assert list(swept.values["yBdot"]) == pytest.approx([r["yBdot"] for r in rows], rel=1e-9)
 
 
 def test_a_sweep_over_the_second_driver_passes_the_files_position():
@@ -307,9 +318,25 @@ def test_loads_of_several_drivers_refused_at_their_line(tmp_path, old, new, word
     assert code == 2 and words in err
 
 
-def test_joint_forces_of_several_drivers_are_refused_by_name():
-    code, _, err = run(["solve", os.path.join(DATA, "arm-2r-loads.yaml"), "--reactions"])
-    assert code == 2 and "joint forces of a mechanism of several drivers are not solved" in err
+@pytest.mark.parametrize("masses", [False, True])
+def test_joint_forces_agree_with_virtual_work_and_each_body_balances(masses):
+    """Newton-Euler with a column per unknown load gives the drivers' torques of the virtual
+    work (a free-body check of another method), and the fore arm's moments about A add up:
+    M2 + (B - A) x (P - m (a_B - g)) = 0."""
+    from linkcli.forces.joint_forces import solve
+    from linkcli.kinematics.solvers import state
+    text = _arm_text()
+    if masses:
+        text = text.replace("report:", "dynamics:\n  gravity: 9.81\n  masses: {B: 3}\n"
+                            "report:").replace("rate: 1.5}", "rate: 1.5, accel: 2}")
+    mech, (m1, m2) = _loads(text)
+    kin, _ = state(mech)
+    reactions = solve(mech, kin)
+    assert [reactions.loads["M1"], reactions.loads["M2"]] == pytest.approx([m1, m2], rel=1e-9)
+    a, b = kin.pos["A"], kin.pos["B"]
+    inertia = 3 * (kin.acc["B"] + 9.81j) if masses else 0
+    net = (10 - 20j) - inertia
+    assert m2 + (np.conj(b - a) * net).imag == pytest.approx(0, abs=1e-9)
 
 
 def test_unknown_loads_that_do_the_same_work_are_refused():
@@ -358,3 +385,16 @@ def test_sweep_round_trip_catches_the_other_drivers_standing_still(monkeypatch):
 
     monkeypatch.setattr(Sweeper, "_positions", still)
     assert any("xAdot" in line for line in sweep_mismatches(name))
+
+
+def test_a_planetary_differential_against_willis():
+    """Sun (r_s = 30 mm) and ring (r_r = 90 mm) driven, the planet (r_p = 30 mm) between
+    them: the arm turns at (w_s r_s + w_r r_r) / (r_s + r_r) and the planet at
+    (w_r r_r - w_s r_s) / (2 r_p), from the contact points' speeds (Willis's formula)."""
+    linkage = linkcli.load(os.path.join(DATA, "planetary-differential.yaml"))
+    sun, ring = (c.rate for c in linkage.model.coordinates)
+    values = linkage.solve(names=["arm_angledot", "planet_angledot"]).values
+    rpm = 2 * np.pi / 60
+    assert values["arm_angledot"] * rpm == pytest.approx((sun * 30 + ring * 90) / 120, rel=1e-9)
+    assert values["planet_angledot"] * rpm == pytest.approx((ring * 90 - sun * 30) / 60,
+                                                            rel=1e-9)

@@ -344,7 +344,7 @@ def test_figure_that_is_not_an_equilibrium_is_refused(tmp_path, capsys):
     ("k: kk, free_length: 1.05", "k: kk, free_length: 1, preload: 3", "springs.k",
      "give one of free_length, preload"),
     ("coordinates: {x: {x: C}}", "coordinates: {x: {x: C}}\ndriver: {x: C, value: 0}", "driver",
-     "either a driver"),
+     "not both 'coordinates' and 'driver'"),
 ])
 def test_bad_elements_are_located(tmp_path, capsys, old, new, key, message):
     text = CASES["disc"][0]

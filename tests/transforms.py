@@ -210,6 +210,7 @@ class Sites:
         for name, spec in (data.get("coordinates") or {}).items():
             if isinstance(spec, dict):
                 self.bases[name] = "angle" if "angle" in spec else "length"
+        self.motor_expressions: list = []      # motors' torque(w, q, t): paths
         self.torsional = set()
         for section in ("springs", "dampers"):
             for name, spec in (data.get(section) or {}).items():
@@ -381,13 +382,38 @@ class Sites:
                 continue
             kind = spec.get("type")
             value_kind = {"torque": "torque", "axial": "force", "pressure": "pressure",
-                          "driver": "torque" if self.driver_base == "angle" else "force"}
+                          "driver": "torque" if self.driver_base == "angle" else "force",
+                          "brake": "torque"}
             self._only(spec, path + (name,), {
                 "type": NAME, "at": NAME, "on": NAME, "x": "force", "y": "force",
                 "magnitude": "force", "angle": "angle", "diameter": "length", "area": "area",
-                "value": value_kind.get(kind, NAME if kind == "force" else None)})
-            if kind not in value_kind and kind != "force":
+                "value": value_kind.get(kind, NAME if kind == "force" else None),
+                # machine dynamics (docs/machines.md): a motor's characteristic, a window
+                "stall": "torque", "no_load": "angular_rate", "torque": "torque",
+                "speeds": self._list("angular_rate"), "torques": self._list("torque"),
+                "over": self._list(self.driver_base)})
+            if kind == "motor" and isinstance(spec.get("torque"), str):
+                self.motor_expressions.append(path + (name, "torque"))
+            if kind not in value_kind and kind not in ("force", "motor"):
                 self.unknown.append(path + (name, "type"))
+
+    def _list(self, kind):
+        """A list of values of ``kind``."""
+        def read(value, path):
+            if isinstance(value, list):
+                for i, v in enumerate(value):
+                    self.put(path + (i,), kind, v)
+            else:
+                self._numbers(value, path)
+        return read
+
+    def _when(self, value, path):
+        """A machine's event: stop, or a time, a speed (the driver's rate), a distance
+        travelled (the driver's unit) or a number of turns."""
+        if isinstance(value, dict):
+            rate = "angular_rate" if self.driver_base == "angle" else "length_rate"
+            self._only(value, path, {"time": "time", "speed": rate,
+                                     "turned": self.driver_base, "turns": None})
 
     def _quantities(self, value, path):
         limit_kind = self.driver_base
@@ -398,17 +424,37 @@ class Sites:
                 continue
             known = dict.fromkeys(QUANTITY_WORDS, NAME)
             known.update({"from": limit_kind, "to": limit_kind, "time": "time",
-                          "axis": self._axis, "stages": self._pure, "powers": self._pure})
+                          "axis": self._axis, "radius": "length", "when": self._when,
+                          "stages": self._pure, "powers": self._pure})
             self._only(spec, path + (name,), known)
 
+    def _motion(self, value, path):
+        """The motion of a machine (docs/machines.md): the time integrated, the periodic
+        regime's mean speed (the driver's rate) and a diagram's areas (pure numbers) with
+        the scales of its drawing, the coefficient of fluctuation and the turns of a cycle."""
+        if value is None:
+            return
+        self._only(value, path, {"until": "time", "regime": self._regime,
+                                 "flywheel": lambda v, p: self._only(v, p, {"fluctuation": None}),
+                                 "turns_per_cycle": None})
+
+    def _regime(self, value, path):
+        rate = "angular_rate" if self.driver_base == "angle" else "length_rate"
+        self._only(value, path, {
+            "mean_speed": rate,
+            "areas": lambda v, p: [self.put(p + (i,), None, a) for i, a in enumerate(v)]
+            if isinstance(v, list) else self._numbers(v, p),
+            "scale": lambda v, p: self._only(v, p, {"torque": "torque", "angle": "angle"})})
+
     def _pure(self, value, path):
-        """A list of pure numbers (docs/dynamics.md: stages' efficiencies, and input powers of
+        """A list of pure numbers (docs/machines.md: stages' efficiencies, and input powers of
         which only the ratios count): kept as written."""
         if not isinstance(value, list):
             self._numbers(value, path)
             return
         for i, v in enumerate(value):
             self.put(path + (i,), None, v)
+
 
     def _axis(self, value, path):
         if isinstance(value, dict):
@@ -536,6 +582,8 @@ QUANTITY_WORDS = (
     "equilibrium", "force_amplitude", "forcing_frequency", "free_response", "mass_matrix",
     "mode_shape", "natural_frequency", "phase", "spring_force", "stiffness_matrix",
     "transmissibility", "expr", "centre_distance", "contact_ratio", "min_teeth", "with",
+    "regime", "flywheel", "reduced_inertia", "reduced_inertia_slope", "reduced_torque",
+    "motion",
     # efficiency questions (docs/machines.md): words, a load's or a slider's name
     "efficiency", "ideal_load", "reverse_load", "self_locking", "at")
 IGNORED = {"title", "source", "notes", "statement", "units", "k", "report", "keys", "quiz",
@@ -671,6 +719,17 @@ class UnitRewrite:
         text = substitute(value, self.back) if self.back else str(value)
         return text if c == 1.0 else f"({text})*{c!r}"
 
+    def motor(self, text):
+        """A motor's torque, an expression of w (the speed, in the angular rate's unit), q
+        (the driver's unit) and t (the time unit) besides the params: each read back in
+        the old unit, the whole converted as a torque (docs/machines.md)."""
+        back = dict(self.back)
+        for name, kind in (("w", "angular_rate"), ("q", self.sites.driver_base),
+                           ("t", "time")):
+            back[name] = f"({name}/{_num(ratio(self.old, self.new, kind))!r})"
+        c = _num(ratio(self.old, self.new, "torque"))
+        return f"({substitute(text, back)})*{c!r}"
+
     def run(self) -> dict:
         out = copy.deepcopy(self.data)
         out["units"] = dict(self.new.declared)
@@ -680,6 +739,8 @@ class UnitRewrite:
                 self.unknown.append(path + ("out of range in the new units",))
         for path, kind in self.sites.kinds.items():
             _set(out, path, self.value(at(self.data, path), kind))
+        for path in self.sites.motor_expressions:
+            _set(out, path, self.motor(at(self.data, path)))
         params = self.data.get("params") or {}
         for name, value in params.items():
             if isinstance(value, list):

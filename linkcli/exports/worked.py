@@ -42,7 +42,8 @@ WORDS = {
            "system": "Re(conj(G_i) v) = r_i: G_i the gradient of each constraint (m), "
                      "r_i its known part (m^2/s, m^2/s^2)", "load": "load", "coefficient":
            "virtual power per unit driver rate", "value": "value", "quantity": "quantity",
-           "unit": "unit", "vibration": "Vibrations"},
+           "unit": "unit", "vibration": "Vibrations",
+           "motion": "Machine dynamics"},
     "it": {"data": "Dati", "structure": "Mobilità e scomposizione in diadi",
            "positions": "Analisi di posizione: chiusura di ogni gruppo nell'ordine di soluzione",
            "velocities": "Analisi di velocità: il sistema lineare di ogni diade",
@@ -53,7 +54,8 @@ WORDS = {
            "vincolo (m), r_i la sua parte nota (m^2/s, m^2/s^2)", "load": "carico",
            "coefficient": "potenza virtuale per velocità unitaria del movente",
            "value": "valore", "quantity": "grandezza", "unit": "unità",
-           "vibration": "Vibrazioni"},
+           "vibration": "Vibrazioni",
+           "motion": "Dinamica della macchina"},
 }
 
 

@@ -27,14 +27,17 @@ from linkcli.errors import RegimeError
 from linkcli.forces.regime import (Cycle, Load, Regime, at_speed, balance_speed,
                                     check_balance, extreme, regime, work)
 
-#: the relative tolerance of the exact flywheel's coefficient (above the shooting's noise)
-XTOL = 1e-9
+#: the relative tolerance of the exact flywheel's coefficient: the energy method's, and the
+#: shooting's (above its noise, about 1e-8 / delta)
+XTOL = 1e-11
+SHOT_XTOL = 1e-7
 
 
 @dataclass(frozen=True)
 class Flywheel:
     """The flywheel for the coefficient ``fluctuation``: ``approximate`` (the books'
-    formula) and ``exact`` (kg m^2), and the regime the exact one gives."""
+    formula; <= 0 where by it the machine's own inertia is enough) and ``exact`` (kg m^2),
+    and the regime the exact one gives."""
 
     fluctuation: float
     approximate: float
@@ -77,7 +80,7 @@ def flywheel(cycle: Cycle, fluctuation: float, mean_speed: float | None = None) 
     """Both flywheels for the coefficient ``fluctuation``; the cycle's own flywheel is
     replaced by the one sought.  Refused where no flywheel gives it: the machine alone
     fluctuates less (a negative flywheel would be needed)."""
-    guess, _, _ = approximate(cycle, fluctuation, mean_speed)
+    guess, dE, w = approximate(cycle, fluctuation, mean_speed)
     bare = cycle.with_flywheel(0.0)
     alone = _machine_alone(bare, mean_speed)
     if alone is not None and alone.fluctuation <= fluctuation:
@@ -85,7 +88,8 @@ def flywheel(cycle: Cycle, fluctuation: float, mean_speed: float | None = None) 
                           f"the machine alone gives {alone.fluctuation:.6g}, and a flywheel "
                           "only lowers it", reason="no flywheel",
                           values=(fluctuation, alone.fluctuation))
-    exact, reg = _solve(bare, fluctuation, mean_speed, guess)
+    exact, reg = _solve(bare, fluctuation, mean_speed,
+                        max(guess, 0.1 * dE / (w * w * fluctuation)))
     return Flywheel(fluctuation, guess, exact, reg)
 
 
@@ -123,7 +127,8 @@ def _solve(bare: Cycle, fluctuation: float, mean_speed, guess: float):
         found[log_j] = reg
         return math.log(reg.fluctuation / fluctuation)
 
-    root = _secant(gap, math.log(max(guess, 1e-300)))
+    tol = SHOT_XTOL if bare.speed_dependent else XTOL
+    root = _secant(gap, math.log(max(guess, 1e-300)), tol)
     if root is None:
         high = math.log(max(guess, 1e-300)) + 0.5
         while gap(high) > 0:
@@ -131,20 +136,21 @@ def _solve(bare: Cycle, fluctuation: float, mean_speed, guess: float):
         low = high - 1.0
         while _gap_or_stop(gap, low) < 0:
             low -= 1.0
-        root = brentq(gap, low, high, xtol=XTOL, rtol=XTOL)
+        root = brentq(gap, low, high, xtol=tol, rtol=tol)
     reg = found.get(root) or regime(bare.with_flywheel(math.exp(root)), mean_speed)
     return math.exp(root), reg
 
 
-def _secant(gap, x0, steps=12):
-    """The root of gap from x0 and x0 - 0.05 by the secant method, or None."""
+def _secant(gap, x0, tol, steps=12):
+    """The root of gap from x0 and x0 -+ 0.05 by the secant method (|gap| within ``tol``),
+    or None."""
     try:
         x1, g1 = x0, gap(x0)
         x2, g2 = x0 - 0.05 if g1 < 0 else x0 + 0.05, None
         g2 = gap(x2)
         for _ in range(steps):
-            if abs(g2) <= XTOL or g2 == g1 or abs(x2 - x1) <= XTOL:
-                return x2 if abs(g2) <= 10 * XTOL else None
+            if abs(g2) <= tol or g2 == g1 or abs(x2 - x1) <= tol:
+                return x2 if abs(g2) <= 10 * tol else None
             x1, g1, x2 = x2, g2, x2 - g2 * (x2 - x1) / (g2 - g1)
             g2 = gap(x2)
     except RegimeError:

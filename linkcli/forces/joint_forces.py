@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from linkcli.errors import Caution, InputError
+from linkcli.errors import Caution
 from linkcli.kinematics.refusals import where_text
 from linkcli.forces import coulomb, friction
 from linkcli.forces.newton_euler import System
@@ -42,11 +42,6 @@ def solve(mech, kin) -> Reactions:
 
     ``kin`` needs positions; velocities with friction; accelerations with masses.
     """
-    if len(mech.coordinates) > 1 and mech.elements is None:
-        raise InputError("joint forces of a mechanism of several drivers are not solved: the "
-                         "Newton-Euler system takes one unknown load", file=mech.file,
-                         key="--reactions", hint="ask for the drivers' unknown loads (virtual "
-                         "work, one per driver), or hold all inputs but one")
     dyn = mech.dynamics
     system = System(mech, dyn, kin)
     rhs = -system.known()
@@ -78,8 +73,10 @@ def _unpack(system, x, losses) -> Reactions:
                                                  out.pins[(point, pin.other)])
     for name in mech.rolling:
         out.contacts[name] = system.value(x, ("contact", name, 0))
-    out.unknown = system.value(x, ("unknown", None, 0))
-    out.loads = {n: (load.value if load.value is not None else out.unknown)
+    keys = [key for kind, key, _ in system.columns if kind == "unknown"]
+    unknowns = {key: system.value(x, ("unknown", key, 0)) for key in keys}
+    out.unknown = unknowns[keys[0]]          # the one unknown (the first of several)
+    out.loads = {n: (load.value if load.value is not None else unknowns.get(n, out.unknown))
                  for n, load in mech.loads.items()}
     out.cautions = lift_off(mech, system.kin, out.pairs) + slack(out)
     return out

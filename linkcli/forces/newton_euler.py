@@ -55,7 +55,8 @@ class System:
         self.rows, self.n_rows = _rows(self.bodies, self.pin_bodies)
         self.pairs = located_pairs(mech, dyn, kin.pos)
         self.pair = dict(self.pairs)
-        self.columns = _columns(self.pin_bodies, self.pairs, mech.rolling)  # (kind, key, part)
+        self.columns = _columns(self.pin_bodies, self.pairs, mech.rolling,  # (kind, key, part)
+                                _unknown_keys(mech))
         self.index = {c: i for i, c in enumerate(self.columns)}
         self.length = _length_scale(mech, self.pos)
 
@@ -109,21 +110,21 @@ class System:
         elif load.kind == "axial":
             self.axial(vec, mech.actuators[load.target], value)
         else:
-            self.driver_load(vec, value)
+            self.driver_load(vec, value, _driver_of(mech, load))
 
-    def driver_load(self, vec, value):
-        """The load conjugate to the driver q: a torque on the crank (angle), a force
-        along q (length: pushing the ends apart), or a force along x or y (coordinate)."""
-        d = self.mech.driver
+    def driver_load(self, vec, value, d=None):
+        """The load conjugate to the driver q (or ``d``, one of several): a torque on the
+        crank (angle), a force along q (length: pushing the ends apart), or a force along x
+        or y (coordinate)."""
+        d = self.mech.driver if d is None else d
         if d.kind == "angle":
-            self.body_moment(vec, _crank(self.mech), value)
+            self.body_moment(vec, _crank(self.mech, d), value)
         elif d.kind == "length":
-            self._length_driver_load(vec, value)
+            self._length_driver_load(vec, value, d)
         else:
             self.pin_force(vec, d.a, (1.0 if d.kind == "x" else 1j) * value)
 
-    def _length_driver_load(self, vec, value):
-        d = self.mech.driver
+    def _length_driver_load(self, vec, value, d):
         act = next((a for a in self.mech.actuators.values() if {a.a, a.b} == {d.a, d.b}), None)
         if act is not None:        # q = |AB| either way: Q pushes the ends apart
             self.axial(vec, act, value)
@@ -170,8 +171,9 @@ class System:
                     self.pin_force(vec, target[1], force)
                 else:
                     self.body_force(vec, target, force, at)
-        else:
-            self.apply_load(vec, self.mech.unknown_load(), 1.0)
+        else:                   # the unknown load (by its name with several drivers)
+            load = self.mech.unknown_load() if key is None else self.mech.loads[key]
+            self.apply_load(vec, load, 1.0)
         return vec
 
     def pair_column(self, vec, pf, part, fcoef):
@@ -236,7 +238,8 @@ class System:
         kind, key, part = column
         if kind == "pair":
             return part == 1 and self.pair[key].kind != "disc"
-        return kind == "unknown" and _unknown_is_moment(self.mech)
+        return kind == "unknown" and _unknown_is_moment(
+            self.mech, None if key is None else self.mech.loads[key])
 
     def value(self, x, column):
         """The solution's component for ``column`` at every driver value."""
@@ -304,16 +307,30 @@ class System:
                 "indeterminate")
 
 
-def _crank(mech) -> str:
-    """The link carrying both points of an angle driver."""
-    d = mech.driver
+def _crank(mech, d=None) -> str:
+    """The link carrying both points of an angle driver (``d``, default the driver)."""
+    d = mech.driver if d is None else d
     return next(b.name for b in mech.bodies.values()
                 if b.kind == "link" and d.a in b.points and d.b in b.points)
 
 
-def _unknown_is_moment(mech) -> bool:
-    load = mech.unknown_load()
-    return load.kind == "torque" or (load.kind == "driver" and mech.driver.kind == "angle")
+def _unknown_is_moment(mech, load=None) -> bool:
+    load = mech.unknown_load() if load is None else load
+    return load.kind == "torque" or (load.kind == "driver" and
+                                     _driver_of(mech, load).kind == "angle")
+
+
+def _driver_of(mech, load):
+    """The driver a driver load acts on: the one of several its ``target`` names, else q's."""
+    return next((c for c in mech.coordinates if c.name == load.target), mech.driver)
+
+
+def _unknown_keys(mech) -> list:
+    """The keys of the unknown loads' columns: None for the one unknown of one driver, each
+    unknown's name with several drivers (one per driver)."""
+    if len(mech.coordinates) > 1 and mech.elements is None:
+        return [load.name for load in mech.unknown_loads()]
+    return [None]
 
 
 def _pin_bodies(mech) -> dict:
@@ -337,9 +354,9 @@ def _rows(bodies, pin_bodies):
     return rows, row
 
 
-def _columns(pin_bodies, pairs, contacts=()) -> list:
+def _columns(pin_bodies, pairs, contacts=(), unknowns=(None,)) -> list:
     """(kind, key, part) of every unknown: pin forces, pair forces, the contacts' forces,
-    the unknown load."""
+    the unknown load (one per driver, by name, with several: ``unknowns``)."""
     columns = []
     for p, bodies in pin_bodies.items():
         for b in bodies:
@@ -347,7 +364,7 @@ def _columns(pin_bodies, pairs, contacts=()) -> list:
     for name, _ in pairs:
         columns += [("pair", name, 0), ("pair", name, 1)]
     columns += [("contact", name, 0) for name in contacts]
-    columns.append(("unknown", None, 0))
+    columns += [("unknown", key, 0) for key in unknowns]
     return columns
 
 

@@ -22,9 +22,11 @@ angle, kg for a length) and Q the reduced torque (N m, or N).
   speed w_b where the mean of Q(q, w_b) over a cycle is zero, the energy method at w_b).
   The orbit is a regime only if it attracts: the multiplier S(q0 + P) < 1.
 
-The mean speed is the true one, the period of q over the time of a cycle,
-w_m = P / integral(dq / w); the coefficient of fluctuation is delta = (w_max - w_min) / w_m
-and the largest fluctuation of energy DeltaE = E_max - E_min over the cycle.
+The mean speed is the books' w_m = (w_max + w_min) / 2 (Khurmi, Norton and Shigley define
+it so, and a given mean speed is that); the average speed P / integral(dq / w), the period
+of q over the time of a cycle, is an answer of its own.  The coefficient of fluctuation is
+delta = (w_max - w_min) / w_m and the largest fluctuation of energy DeltaE = E_max - E_min
+over the cycle (for a constant J*, exactly DeltaE = J* w_m^2 delta).
 """
 from __future__ import annotations
 
@@ -121,6 +123,7 @@ class Regime:
     q: np.ndarray = field(repr=False)
     w: np.ndarray = field(repr=False)
     mean_speed: float
+    average_speed: float
     max_speed: float
     at_max_speed: float
     min_speed: float
@@ -203,22 +206,24 @@ def check_balance(cycle: Cycle, w: float = 0.0) -> None:
     """Refuse a cycle whose mean torque is not zero: each cycle then adds (or takes) the
     work W(P), so the machine runs away (or stops) and has no periodic regime."""
     q = cycle.q()
-    total = float(cycle.Q(q[:-1], np.full(q.size - 1, float(w))).mean())
-    scale = float(np.abs(cycle.Q(q, np.full(q.shape, float(w)))).max())
+    ww = np.full(q.shape, float(w))
+    total = float(cycle.Q(q[:-1], ww[:-1]).mean())
+    scale = max(float(np.abs(np.broadcast_to(ld.torque(q, ww), q.shape)).max())
+                for ld in cycle.loads) if cycle.loads else 0.0
     if abs(total) <= BALANCED * scale:
         return
     means = cycle.means(w)
     parts = ", ".join(f"{name} {value:.6g}" for name, value in means.items())
     fate = "speeds up every cycle (runs away)" if total > 0 else "slows down and stops"
     raise RegimeError(f"no periodic regime: the mean torques over a cycle are {parts}, their "
-                      f"sum {total:.6g} is {abs(total) / scale:.3g} of the largest torque "
+                      f"sum {total:.6g} is {abs(total) / scale:.3g} of the largest load's "
                       f"{scale:.6g}, not 0: the machine {fate}", reason="unbalanced",
                       values=(total, scale), hint="a regime needs the mean driving torque "
                       "equal to the mean resisting one")
 
 
 def energy_method(cycle: Cycle, mean_speed: float) -> Regime:
-    """E(q) = E0 + W(q) with E0 such that the true mean speed is ``mean_speed``."""
+    """E(q) = E0 + W(q) with E0 such that (w_max + w_min) / 2 is ``mean_speed``."""
     check_balance(cycle)
     W = work(cycle)
     E0 = start_energy(cycle, W, mean_speed)
@@ -233,27 +238,45 @@ def cycle_time(cycle: Cycle, E: np.ndarray) -> float:
 
 
 def start_energy(cycle: Cycle, W, mean_speed: float) -> float:
-    """E0 with P / integral(dq / w) = mean_speed, w = sqrt(2 (E0 + W) / J*): Brent's method
-    between the lowest E0 that keeps the machine moving and one large enough."""
+    """E0 with (w_max + w_min) / 2 = mean_speed, w = sqrt(2 (E0 + W) / J*): Brent's method on
+    the grid's extremes, then on the extremes at their refined positions, again until those
+    positions hold (at once for a constant J*, whose extremes do not move with E0)."""
     from scipy.optimize import brentq
 
     q = cycle.q()
-    Wq = W(q)
-    J = cycle.J(q)
+    Wq, J = W(q), cycle.J(q)
     low = -float(Wq.min())
-    target = cycle.period / mean_speed
+    high = low + max(0.5 * float(J.max()) * mean_speed ** 2, float(Wq.max() - Wq.min()), 1e-300)
 
-    def gap(E0):
-        return cycle_time(cycle, E0 + Wq) - target
+    def grid_gap(E0):
+        w = np.sqrt(2.0 * np.maximum(E0 + Wq, 0.0) / J)
+        return 0.5 * (w.max() + w.min()) - mean_speed
 
-    spread = float(Wq.max() - Wq.min())
-    high = low + max(0.5 * float(J.max()) * mean_speed ** 2, spread, 1e-300)
-    while gap(high) > 0:
+    while grid_gap(high) < 0:
         high = low + 4.0 * (high - low)
-    bottom = low + 1e-12 * (high - low)
-    if gap(bottom) < 0:       # the machine crawls past its slowest position: not resolved
-        bottom = low + 1e-6 * (high - low)
-    return brentq(gap, bottom, high, xtol=1e-15 * high, rtol=4 * np.finfo(float).eps)
+    E0 = brentq(grid_gap, low, high, xtol=1e-15 * high, rtol=4 * np.finfo(float).eps)
+    for _ in range(8):
+        at = _extreme_positions(cycle, W, E0)
+        w_of = [lambda E, x=x: math.sqrt(2.0 * max(E + float(W(np.array([x]))[0]), 0.0)
+                                         / float(cycle.J(np.array([x]))[0])) for x in at]
+        E1 = brentq(lambda E: 0.5 * (w_of[0](E) + w_of[1](E)) - mean_speed, low, high,
+                    xtol=1e-15 * high, rtol=4 * np.finfo(float).eps)
+        if abs(E1 - E0) <= 1e-14 * E1:
+            return E1
+        E0 = E1
+    return E0
+
+
+def _extreme_positions(cycle: Cycle, W, E0: float):
+    """Where w = sqrt(2 (E0 + W) / J*) is largest and smallest, refined from the grid."""
+    def speed(x):
+        return np.sqrt(2.0 * np.maximum(E0 + W(x), 0.0) / cycle.J(x))
+
+    def slope(x):
+        return cycle.Q(x, speed(x)) * cycle.J(x) - (E0 + W(x)) * cycle.dJ(x)
+
+    w = speed(cycle.q())
+    return extreme(cycle, speed, w, +1, slope)[0], extreme(cycle, speed, w, -1, slope)[0]
 
 
 # --- the orbit and its answers -----------------------------------------------------------
@@ -268,7 +291,8 @@ def orbit(cycle: Cycle, energy: Callable, method: str, **extra) -> Regime:
     w = np.sqrt(2.0 * np.maximum(E, 0.0) / cycle.J(q))
     T = cycle_time(cycle, E)
     reg = Regime(cycle=cycle, energy=energy, method=method, q=q, w=w,
-                 mean_speed=cycle.period / T, max_speed=0.0, at_max_speed=0.0,
+                 mean_speed=0.0, average_speed=cycle.period / T, max_speed=0.0,
+                 at_max_speed=0.0,
                  min_speed=0.0, at_min_speed=0.0, energy_fluctuation=0.0,
                  at_max_energy=0.0, at_min_energy=0.0, max_acceleration=0.0,
                  at_max_acceleration=0.0, min_acceleration=0.0, at_min_acceleration=0.0,
@@ -281,6 +305,7 @@ def orbit(cycle: Cycle, energy: Callable, method: str, **extra) -> Regime:
 
     reg.at_max_speed, reg.max_speed = extreme(cycle, reg.speed, w, +1, speed_slope)
     reg.at_min_speed, reg.min_speed = extreme(cycle, reg.speed, w, -1, speed_slope)
+    reg.mean_speed = 0.5 * (reg.max_speed + reg.min_speed)
     reg.at_max_energy, top = extreme(cycle, energy, E, +1, torque)
     reg.at_min_energy, bottom = extreme(cycle, energy, E, -1, torque)
     reg.energy_fluctuation = top - bottom
@@ -363,7 +388,7 @@ def shoot(cycle: Cycle) -> Regime:
             E0 *= 2.0
             continue
         F = end - E0
-        if abs(F) <= 100 * RTOL * scale:
+        if abs(F) <= 10 * RTOL * scale:
             if S >= 1.0:
                 raise RegimeError(f"the periodic orbit (energy {E0:.6g} J at q0) repels: "
                                   f"its multiplier over a cycle is {S:.6g} >= 1, so the "

@@ -36,6 +36,8 @@ from linkcli.input.oscillation import OscillationSection
 from linkcli.input.dynamics import DynamicsReader
 from linkcli.input.elements import ElementsReader
 from linkcli.input.loads import LoadsSection
+from linkcli.input.machine import MachineSection, is_machine
+from linkcli.input.regime import RegimeSection
 from linkcli.input.reader import (NAME, UNKNOWN, InputErrors, Reader, _kind, _Skip,
                                   reserved_parameter)
 
@@ -43,7 +45,8 @@ TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points
             "actuators", "sliders", "driver", "drivers", "coordinates", "loads", "quantities",
             "report",
             "keys", "dynamics", "springs", "dampers", "excitation", "initial", "equilibrium",
-            "rolling", "cords", "statement", "quiz", "find", "gears", "shafts", "clutch"}
+            "rolling", "cords", "statement", "quiz", "find", "motion", "gears", "shafts",
+            "clutch"}
 VIBRATION_KEYS = ("springs", "dampers", "excitation", "initial", "equilibrium")
 
 __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS", "UNKNOWN",
@@ -53,7 +56,8 @@ __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS
 class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSection,
              TextbookQuantities, ForceQuantities, EfficiencyQuantities, LimitsSection,
              VibrationQuantities, ReportSection, KeysSection, DerivedSection,
-             OscillationSection, FindSection, GearsSection, ClutchSection):
+             OscillationSection, FindSection, MachineSection, RegimeSection, GearsSection,
+             ClutchSection):
     """The whole document: units, params, frame and points, then each section."""
 
     def parse(self) -> Mechanism:
@@ -95,9 +99,16 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
                     self.error((key,), f"'{key}' belongs to a vibration problem, which declares "
                                "its coordinates", hint="replace 'driver:' by 'coordinates:', "
                                "e.g. coordinates: {theta: {angle: [O, A]}}")
+        self.driver_base = driver.base if driver is not None else "angle"
+        self.driver_of_file = driver
+        machine = self.machine = is_machine(data)
+        if machine and "coordinates" in data:
+            self.error(("coordinates",), "the motion under given loads is of a mechanism with "
+                       "one driver", hint="replace 'coordinates:' by 'driver:'")
         loads = self.block(self.loads, data, units, pool, bodies, actuators, driver,
-                           "coordinates" not in data,
+                           "coordinates" not in data and not machine,
                            coordinates if "drivers" in data else ()) or {}
+        motion = self.block(self.motion_section, data, units)
         self.vibration = {"coordinates": {c.name for c in coordinates}
                           if "coordinates" in data else set(),
                           "springs": self.element_names(data, "springs"),
@@ -123,7 +134,7 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
                          statement=self.block(self.statement, data) or "",
                          quiz=self.block(self.quiz, data, report) or Quiz(),
                          params={n: v for n, v in self.names.items()}, design=design,
-                         gears=self.gear_table)
+                         motion=motion, gears=self.gear_table)
         if "dynamics" in data:
             mech.dynamics = DynamicsReader(self, mech, _Skip).run(data["dynamics"])
         if "coordinates" in data:   # after the dynamics: an element may name a rolling disc
@@ -143,8 +154,9 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
 
     def inputs_declared(self, data) -> None:
         """A file declares its inputs once: ``driver`` (one), ``drivers`` (several, each
-        driven) or ``coordinates`` (a vibration problem's)."""
-        given = [k for k in ("driver", "drivers", "coordinates") if k in data]
+        driven) or ``coordinates`` (a vibration problem's); the second one in the file's
+        order is the one refused, at its line."""
+        given = [k for k in data if k in ("driver", "drivers", "coordinates")]
         if len(given) > 1:
             self.error((given[1],), f"a file has one of 'driver' (one degree of freedom), "
                        f"'drivers' (several, each with its rates) and 'coordinates' "

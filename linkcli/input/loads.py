@@ -7,12 +7,14 @@ it); on an actuator it is the axial load p A (p > 0 pushes the ends apart).
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 
 from linkcli.model.exact import cis, hypot, phase, plane
 from linkcli.model.dimensions import driver_rate_kind
 from linkcli.model.mechanism import FRAME, Driver, Load
 from linkcli.input.reader import UNKNOWN
+from linkcli.input.machine import MOTOR_KEYS
 
 
 class LoadsSection:
@@ -126,8 +128,13 @@ class LoadsSection:
         wanted = max(1, len(drivers))
         if not unknown_needed:
             for n in unknown:
-                self.error(("loads", n), "a vibration problem has no unknown load: every load "
-                           "is known and acts in the equilibrium", hint="give its value")
+                if getattr(self, "machine", False):
+                    self.error(("loads", n), "the motion under given loads needs every load "
+                               "known: none is 'unknown'", hint="give its value; the driving "
+                               "torque of a prescribed motion is asked in a file of its own")
+                else:
+                    self.error(("loads", n), "a vibration problem has no unknown load: every "
+                               "load is known and acts in the equilibrium", hint="give its value")
         elif loads and len(unknown) != wanted and len(loads) == len(spec):
             which = ", ".join(unknown) if unknown else "none"
             exactly = "exactly one load must be unknown" if wanted == 1 else \
@@ -142,8 +149,30 @@ class LoadsSection:
         path = ("loads", name)
         self.name(name, path, what="load")
         value = self.mapping(value, path, {"type", "at", "on", "x", "y", "magnitude", "angle",
-                                           "value", "area", "diameter"}, ("type",))
+                                           "value", "area", "diameter", "over"} | MOTOR_KEYS,
+                             ("type",))
         kind = value["type"]
+        window = self.window(value, path, units, driver)
+        load = self.known_load(name, value, path, kind, units, pool, bodies, actuators, driver,
+                               data, drivers)
+        if window is not None:
+            if not getattr(self, "machine", False):
+                raise self.error(path + ("over",), "'over' switches a load on over a window of "
+                                 "the driver in the motion under given loads (machine dynamics)",
+                                 hint="ask for the motion (docs/machines.md) or remove it")
+            if load.value is None:
+                raise self.error(path + ("over",), "an unknown load has no window")
+            load = dataclasses.replace(load, window=window)
+        return load
+
+    def known_load(self, name, value, path, kind, units, pool, bodies, actuators, driver,
+                   data, drivers=()) -> Load:
+        """The load of type ``kind`` without its window."""
+        for key in MOTOR_KEYS:
+            if key in value and kind != "motor":
+                raise self.error(path + (key,), f"'{key}' is a motor's characteristic")
+        if kind in ("motor", "brake"):
+            return self.turning_load(name, value, path, kind, units, bodies, actuators, driver)
         if kind == "pressure":
             return self.pressure(name, value, path, units, bodies, actuators, data)
         for key in ("area", "diameter"):
@@ -155,7 +184,7 @@ class LoadsSection:
             return self.force(name, value, path, units, pool)
         if kind not in ("torque", "axial", "driver"):
             raise self.error(path + ("type",), f"unknown load type {kind!r}",
-                             hint="force, torque, axial, driver or pressure")
+                             hint="force, torque, axial, driver, pressure, motor or brake")
         for key in ("at", "x", "y", "magnitude", "angle"):
             if key in value:
                 raise self.error(path + (key,), f"'{key}' is for forces")
@@ -176,6 +205,26 @@ class LoadsSection:
         unit = {"torque": "torque", "axial": "force", "driver": driver_unit}[kind]
         amount = self.amount(self.get(value, path, "value"), path + ("value",), unit, units)
         return Load(name, kind, target, 1, amount)
+
+    def turning_load(self, name, value, path, kind, units, bodies, actuators, driver) -> Load:
+        """A motor (its characteristic) or a brake (a torque >= 0 against the turning) on a
+        body of the mechanism."""
+        for key in ("at", "x", "y", "magnitude", "angle", "area", "diameter"):
+            if key in value:
+                raise self.error(path + (key,), f"'{key}' is not a key of a {kind}")
+        pool_b = {n for n, b in bodies.items() if b.kind in ("link", "block")} | set(actuators)
+        target = self.name(self.get(value, path, "on"), path + ("on",), pool_b, "link")
+        if kind == "motor":
+            if "value" in value:
+                raise self.error(path + ("value",), "a motor's torque is its characteristic",
+                                 hint="stall and no_load, speeds and torques, or torque")
+            return Load(name, "motor", target, 1, 0.0, motor=self.motor(value, path, units,
+                                                                        driver))
+        amount = self.number(self.get(value, path, "value"), path + ("value",), "torque", units)
+        if not amount >= 0:
+            raise self.error(path + ("value",), f"a brake's torque opposes the motion: give its "
+                             f"size (>= 0), got {value['value']!r}")
+        return Load(name, "brake", target, 1, amount)
 
     def amount(self, value, path, kind, units):
         if value == UNKNOWN:

@@ -118,9 +118,9 @@ class OscillationSection:
         aside: model.units.show); else a located error naming the units that have it."""
         from linkcli.input.derived import words
         from linkcli.model.dimensions import dimension
-        from linkcli.model.mechanism import VIBRATION
+        from linkcli.model.mechanism import MACHINE, VIBRATION
         for name, q in mech.quantities.items():
-            if q.kind in VIBRATION and q.unit is not None:
+            if q.kind in VIBRATION + MACHINE and q.unit is not None:
                 try:
                     dim = dimension(mech, name)
                 except (KeyError, AttributeError, StopIteration):

@@ -27,6 +27,7 @@ from linkcli.input.derived import EXPR
 from linkcli.input.gears import GEARING
 from linkcli.input.oscillation import OSCILLATION
 from linkcli.input.efficiency import EFFICIENCY
+from linkcli.input.machine import MACHINE
 
 #: the kinds of a geometric quantity, each the YAML key that asks for it
 GEOMETRY = ("angle", "length", "x", "y", "load", "speed", "acceleration",
@@ -152,6 +153,8 @@ class QuantitiesSection:
         if name.endswith("dot"):
             raise self.error(path, "quantity names must not end in 'dot'",
                              hint="rates are named automatically: phi1 -> phi1dot, phi1ddot")
+        if isinstance(value, dict) and any(k in value for k in MACHINE):
+            return self.machine_quantity(name, value, path)
         if isinstance(value, dict) and any(k in value for k in OSCILLATION):
             return self.oscillation_quantity(name, value, path, pool)
         if isinstance(value, dict) and any(k in value for k in VIBRATION):

@@ -22,11 +22,20 @@ quantity failed is skipped: its own error is reported already.
 """
 from __future__ import annotations
 
-from linkcli.model.mechanism import VIBRATION, split_rate
+from linkcli.model.mechanism import MACHINE, VIBRATION, split_rate
 from linkcli.input.derived import EXPR
 from linkcli.input.quantities import EITHER, FORCES, LEVEL, RATES, SUFFIX, kind_text
 
 SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration", "points", "motion")
+
+
+#: the sections whose names are the quantities of one analysis, and what they are
+#: (a clutch problem's answers are listed with the motion: docs/machines.md)
+OWN_SECTIONS = {"motion": MACHINE + ("clutch",), "vibration": VIBRATION}
+OWN_WORDS = {"motion": ("machine dynamics", "reduced inertias and torques and the answers of "
+                        "the motion in time"),
+             "vibration": ("the vibration analysis", "natural frequencies, modes, matrices, "
+                           "equilibrium, amplitudes")}
 
 
 def split_base(name: str, order: int) -> str:
@@ -80,20 +89,14 @@ class ReportSection:
         if base[0] in quantities and quantities[base[0]].kind == EXPR:
             self.rate_of(name, quantities[base[0]], base[1], path)
             return True             # an expression: in the section its reader expects
-        clutch = name in quantities and quantities[name].kind == "clutch"
-        if clutch or section == "motion":
-            if not clutch or section != "motion":
-                raise self.error(path, f"'{name}' is {'' if clutch else 'not '}an answer of a "
-                                 "clutch", hint="the 'motion' section lists the answers of the "
-                                 "motion in time, a clutch's among them")
-            return True
-        vibration = name in quantities and quantities[name].kind in VIBRATION
-        if section == "vibration" or vibration:
-            if not vibration or section != "vibration":
-                raise self.error(path, f"'{name}' is {'' if vibration else 'not '}a quantity of "
-                                 "the vibration analysis", hint="the 'vibration' section lists "
-                                 "natural frequencies, modes, matrices, equilibrium, amplitudes")
-            return True
+        for own, kinds in OWN_SECTIONS.items():
+            belongs = name in quantities and quantities[name].kind in kinds
+            if section == own or belongs:
+                if not belongs or section != own:
+                    what, lists = OWN_WORDS[own]
+                    raise self.error(path, f"'{name}' is {'' if belongs else 'not '}a quantity "
+                                     f"of {what}", hint=f"the '{own}' section lists {lists}")
+                return True
         if section == "statics":
             if name in quantities and quantities[name].kind in FORCES:
                 self.balanced(name, quantities[name], path)

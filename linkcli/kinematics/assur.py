@@ -119,8 +119,9 @@ class _Decomposer(ContactGroups):
             raise self.fail(
                 f"the structure does not decompose into dyads (RRR, RRP, PRP, RPR): points "
                 f"{', '.join(missing)} are not reached",
-                hint="the vibration analysis and files with several coordinates need the "
-                "closed form: check the links and contacts around them" if several else
+                hint=("the vibration analysis and files with several drivers or "
+                      "coordinates need the closed form: check the links and contacts around "
+                      "them") if several else
                 "it may hold a class-III group (triad): solve it with --method newton, "
                 "or check the links around them")
         unused = [n for n in self.relations if n not in self.consumed]

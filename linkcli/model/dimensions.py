@@ -9,7 +9,8 @@ dimension of the value it is written as on its own (``k: ks`` makes ``ks`` a sti
 """
 from __future__ import annotations
 
-from linkcli.model.mechanism import split_rate
+from linkcli.model.mechanism import MACHINE, split_rate
+from linkcli.model.regime import KINDS as REGIME_KINDS, regime_dimension
 from linkcli.model.units import ANGLE_DIM, DIMENSIONS, FORCE_DIM, LENGTH_DIM, MASS_DIM, NONE, \
     TIME_DIM, Dimension
 
@@ -83,7 +84,28 @@ def of_quantity(mech, quantity) -> Dimension:
         return quantity.dimension
     if kind == "design":
         return param_unit(mech, quantity.a)[1]
+    if kind in MACHINE:
+        return machine_dimension(mech, quantity)
     return _vibration(mech, quantity)
+
+
+def machine_dimension(mech, quantity) -> Dimension:
+    """J* (an inertia for an angle driver, a mass for a length one), dJ*/dq, the reduced
+    torque (a torque or a force), and the motion's answers (the driver's unit, its rates,
+    turns, a time); the periodic regime's and the flywheel's (model.regime)."""
+    if quantity.kind in REGIME_KINDS:
+        return regime_dimension(mech, quantity)
+    base = base_dimension(mech.driver.base)
+    angular = mech.driver.base == "angle"
+    inertia = MASS_DIM * LENGTH_DIM ** 2 if angular else MASS_DIM
+    if quantity.kind == "reduced_inertia":
+        return inertia
+    if quantity.kind == "reduced_inertia_slope":
+        return inertia / base
+    if quantity.kind == "reduced_torque":
+        return FORCE_DIM * LENGTH_DIM if angular else FORCE_DIM
+    return {"speed": base / TIME_DIM, "acceleration": base / TIME_DIM ** 2, "turned": base,
+            "turns": NONE, "time": TIME_DIM}[quantity.a]
 
 
 def coordinate_dimension(mech, name: str) -> Dimension:

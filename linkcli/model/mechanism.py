@@ -159,7 +159,9 @@ class Load:
     (complex), magnitude ``value`` (N); 'torque': on body ``target`` (N m,
     counter-clockwise); 'axial': on actuator ``target`` (N, > 0 pushes the
     ends apart); 'driver': generalised force on q (N or N m), with several drivers on
-    the driver named ``target``.  A pressure load is
+    the driver named ``target``; 'motor': a torque on body ``target`` given by its
+    characteristic ``motor`` of the body's speed; 'brake': a torque ``value`` >= 0 on body
+    ``target`` against its turning.  A pressure load is
     the force or axial load p A, with ``pressure`` = (p in Pa, A in m^2, the bore D
     in m or None) as the problem states them.
     """
@@ -170,6 +172,10 @@ class Load:
     direction: complex
     value: float | None
     pressure: tuple | None = None
+    #: machine dynamics (model.machine): the driver's window (q1, q2) it acts in, None:
+    #: always; a motor's Characteristic ('motor' loads); a brake's torque is ``value``
+    window: tuple | None = None
+    motor: object = None
 
 
 @dataclass(frozen=True)
@@ -237,6 +243,8 @@ class Quantity:
     #: of the characteristic polynomial's coefficient, 'monic' (divided by the leading one)
     form: str | None = None
     axis: tuple | None = None      # a joint force's direction of projection (see above)
+    #: a flywheel's radius of gyration (m): the answer is then its mass (model.regime)
+    radius: float | None = None
 
     @property
     def rates(self) -> int:
@@ -268,6 +276,12 @@ LIMITS = ("maximum", "minimum", "at_maximum", "at_minimum", "stroke", "time_rati
 #: the report's sections of named quantities, in the order of the answer sheet
 REPORT_SECTIONS = ("design", "position", "velocity", "acceleration", "statics", "vibration",
                    "motion")
+
+#: quantity kinds of machine dynamics (input.machine): one value at the driver's state, or
+#: of the motion in time (kind 'motion': ``a`` the answer, ``b`` the event, ``time`` its
+#: value in SI)
+MACHINE = ("reduced_inertia", "reduced_inertia_slope", "reduced_torque", "motion", "regime",
+           "flywheel")
 
 #: quantity kinds of the vibration analysis (each is also the YAML key that asks for it)
 VIBRATION = ("natural_frequency", "damped_frequency", "damping_ratio", "mode_shape",
@@ -360,6 +374,8 @@ class Mechanism:
     source: object = None
     #: a design question (``find:``, model.design.Design), None when absent
     design: object = None
+    #: the ``motion:`` section of machine dynamics (model.machine.MotionSpec), None when absent
+    motion: object = None
     #: name -> model.gears.Gear: the gears given by their teeth (``gears:``)
     gears: dict = field(default_factory=dict)
     #: a clutch problem's shafts and clutch (``shafts:``, model.clutch.ClutchProblem): then
@@ -408,11 +424,12 @@ class Mechanism:
         return [load for load in self.loads.values() if load.value is None]
 
     def load_unit_kind(self, load: Load) -> str:
-        """'torque' for a torque or the driver load of an angle driver (the driver it acts
-        on, ``target``, with several drivers), else 'force'."""
+        """'torque' for a torque (a motor's, a brake's) or the driver load of an angle driver
+        (the driver it acts on, ``target``, with several drivers), else 'force'."""
         driver = next((c for c in self.coordinates if c.name == load.target), self.driver) \
             if load.kind == "driver" else None
-        if load.kind == "torque" or driver is not None and driver.kind == "angle":
+        if load.kind in ("torque", "motor", "brake") or driver is not None and \
+                driver.kind == "angle":
             return "torque"
         return "force"
 

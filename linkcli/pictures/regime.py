@@ -10,10 +10,12 @@ each is labelled with its area.  matplotlib is imported inside the functions.
 """
 from __future__ import annotations
 
+import textwrap
 from dataclasses import dataclass
 
 import numpy as np
 
+from linkcli.errors import InputError
 from linkcli.forces.regime import Regime
 
 #: samples per cycle of the curves and of each lobe's outline
@@ -112,8 +114,9 @@ def picture(reg: Regime, units, title: str = "", dpi: int = 100):
         top.annotate(f"{label} {value / w_f:.4g}", (at / q_f, value / w_f),
                      textcoords="offset points", xytext=(4, 4), fontsize=8)
     top.set_ylabel(f"w [{w_unit}]")
-    top.set_title(f"{title}\ndelta = {reg.fluctuation:.4g}, "
-                  f"DeltaE = {reg.energy_fluctuation:.6g} J".strip())
+    head = "\n".join(textwrap.wrap(title, 80)) + "\n" if title else ""
+    top.set_title(f"{head}delta = {reg.fluctuation:.4g}, "
+                  f"DeltaE = {reg.energy_fluctuation:.6g} J", fontsize=10)
     bottom.plot(q / q_f, torque_on_orbit(reg, q) / t_f, color="k", lw=1.0)
     bottom.axhline(0.0, color="0.5", lw=0.8)
     for lobe in lobes(reg):
@@ -130,3 +133,25 @@ def picture(reg: Regime, units, title: str = "", dpi: int = 100):
     bottom.set_xlabel(f"q [{q_unit}]  (darker: the areas that add up to DeltaE, in J)")
     fig.tight_layout()
     return fig
+
+
+def plot_regime(mech, output: str, dpi: int = 100) -> None:
+    """``linkcli plot FILE --regime -o OUT``: the picture of the file's periodic regime, in
+    its units (the driver's angle and rate, its torque)."""
+    from linkcli.pictures.plotting import IMAGE_FORMATS, _save_figure, check_output
+    from linkcli.runs import machine_regime
+
+    check_output(output, IMAGE_FORMATS)
+    spec = machine_regime.spec_of(mech)
+    if spec is None or spec.areas:
+        raise InputError("the regime's picture needs the turning moment as loads on the "
+                         "machine" + (", not a diagram's areas" if spec is not None else
+                                      ": 'motion:' asks no periodic regime"),
+                         file=mech.file, key="motion.regime", hint="give the loads, or "
+                         "add motion: {regime: {mean_speed: ...}}")
+    reg = machine_regime.solved(mech)
+    q_unit, q_f = mech.units.display("angle", 0)
+    w_unit, w_f = mech.units.display("angle", 1)
+    t_unit, t_f = mech.units.names["torque"], mech.units.factor("torque")
+    fig = picture(reg, (q_unit, q_f, w_unit, w_f, t_unit, t_f), mech.title, dpi)
+    _save_figure(fig, output)

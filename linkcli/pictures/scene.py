@@ -319,7 +319,9 @@ def loads(scene, values, units_text) -> list[LoadSymbol]:
         value, unknown = values.get(load.name), load.value is None
         shown = "?" if value is None else fmt(value, 1)     # never '-0.0'
         text = f"{load.name} = {shown} {units_text.get(load.name, '')}" + \
-            (" (unknown)" if unknown else "")
+            (" (unknown)" if unknown else " (brake)" if load.kind == "brake" else "")
+        if load.kind == "motor":    # a characteristic, no single value
+            text = f"{load.name} (motor)"
         sign = 1.0 if value is None or value >= 0 else -1.0
         out.append(_place(scene, load, LoadSymbol("", text, unknown, sign)))
     return out
@@ -332,7 +334,7 @@ def _place(scene, load, mark):
     driver = load.kind == "driver"
     if load.kind == "force":
         mark.kind, mark.at, mark.direction = "arrow", p[load.target], load.direction * mark.sign
-    elif load.kind == "torque":
+    elif load.kind in ("torque", "motor", "brake"):
         mark.kind, mark.at = "torque", scene.centroid(_body_points(mech, load.target))
     elif driver and d.kind == "angle":
         mark.kind, mark.at = "torque", p[d.a] if d.a in mech.fixed else p[d.b]

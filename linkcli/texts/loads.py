@@ -76,11 +76,42 @@ def _coordinates(w) -> list:
 
 # --- loads ------------------------------------------------------------------------------------
 def _loads(w) -> list:
-    return [_load(w, load) for load in w.mech.loads.values()]
+    return [_windowed(w, load, _load(w, load)) for load in w.mech.loads.values()]
+
+
+def _windowed(w, load, line) -> str:
+    """A load's line with the driver's window it acts in (machine dynamics)."""
+    if load.window is None:
+        return line
+    lo, hi = (w.angle(x) if w.mech.driver.base == "angle" else w.length(x)
+              for x in load.window)
+    return w.w["window"].format(line=line, lo=lo, hi=hi)
+
+
+def _turning(w, load) -> str:
+    """A motor's characteristic or a brake's torque, in the file's units."""
+    if load.kind == "brake":
+        return w.w["brake"].format(name=load.name, on=load.target,
+                                   value=w.amount(load.value, "torque"))
+    c = load.motor
+    names = dict(name=load.name, on=load.target)
+    if c.kind == "linear":
+        return w.w["motor_linear"].format(stall=w.amount(c.stall, "torque"),
+                                          no_load=w.amount(c.no_load, "angular_rate"), **names)
+    if c.kind == "table":
+        at = " at " if w.lang == "en" else " a "
+        points = ", ".join(f"{w.amount(m, 'torque')}{at}{w.amount(n, 'angular_rate')}"
+                           for n, m in zip(c.speeds, c.torques))
+        return w.w["motor_table"].format(points=points, **names)
+    units = w.mech.units.names
+    return w.w["motor_expression"].format(text=c.text, units=f"{units['torque']}, w in "
+                                          f"{units['angular_rate']}", **names)
 
 
 def _load(w, load) -> str:
     mech = w.mech
+    if load.kind in ("motor", "brake"):
+        return _turning(w, load)
     if load.pressure is not None:
         return _pressure(w, load, load.pressure)
     if load.kind == "force":

@@ -139,6 +139,27 @@ PHRASES = {
         "forza assiale {name} nell'attuatore {on} (positiva se allontana gli estremi): "
         "incognita",
     ),
+    "motor_linear": (
+        "motor {name} on {on}: M = {stall} (1 - n / {no_load}), n its speed "
+        "(counter-clockwise positive)",
+        "motore {name} su {on}: M = {stall} (1 - n / {no_load}), n la sua velocità "
+        "(positiva antioraria)",
+    ),
+    "motor_table": (
+        "motor {name} on {on}: the torque {points} against its speed, linear between them",
+        "motore {name} su {on}: la coppia {points} in funzione della velocità, lineare tra "
+        "i punti",
+    ),
+    "motor_expression": (
+        "motor {name} on {on}: M = {text} ({units}; w its speed, q the driver, t the time)",
+        "motore {name} su {on}: M = {text} ({units}; w la sua velocità, q il movente, t il "
+        "tempo)",
+    ),
+    "brake": (
+        "brake {name} on {on}: {value} against its turning",
+        "freno {name} su {on}: {value} opposta alla rotazione",
+    ),
+    "window": ("{line}, while q is from {lo} to {hi}", "{line}, per q da {lo} a {hi}"),
     "driver_load": (
         "{name}: the generalised force on {q} ({what}), unknown",
         "{name}: la forza generalizzata su {q} ({what}), incognita",

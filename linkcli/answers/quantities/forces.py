@@ -26,8 +26,8 @@ def loads_at(mech, solver, kin, names, context=None):
     if not wanted:
         return {}
     values = {n: load.value for n, load in mech.loads.items()}
-    if mech.elements is not None:   # a vibration problem: every load known (input.loads)
-        return values
+    if mech.elements is not None or None not in values.values():
+        return values               # every load known: a vibration problem, a machine's motion
     if len(mech.coordinates) > 1:   # one unknown per driver, by each driver's motion
         values.update(_unknowns_of_drivers(mech, solver, kin))
         return values
@@ -148,7 +148,8 @@ def _unknowns_of_drivers(mech, solver, kin) -> dict:
         from linkcli.forces.friction import has_losses
         if has_losses(mech.dynamics):
             raise InputError("friction losses with several drivers are not solved: the "
-                             "joint forces they need take one unknown load", file=mech.file,
-                             key="dynamics", hint="leave friction out, or drive one input")
+                             "friction's iteration on the joint forces finds one unknown "
+                             "load", file=mech.file, key="dynamics",
+                             hint="leave friction out, or drive one input")
         extra = [dynamic_power(mech, kin, unit) for unit in units]
     return unknown_loads(mech, kin.pos, [u.vel for u in units], extra, q=tuple(kin.coords))

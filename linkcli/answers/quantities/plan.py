@@ -23,7 +23,7 @@ from linkcli.errors import InputError, LinkcliError, SolveError
 from linkcli.kinematics.compiled import X as X_PROBE, Y as Y_PROBE, compiled, program_of
 from linkcli.kinematics.solvers import solver_for
 from linkcli.kinematics.straight import SHORT, straight_of
-from linkcli.model.mechanism import REPORT_SECTIONS, VIBRATION, split_rate
+from linkcli.model.mechanism import MACHINE, REPORT_SECTIONS, VIBRATION, split_rate
 from linkcli.input.quantities import LEVEL
 from linkcli.input.gears import GEARING
 from linkcli.model.units import FORCE, TORQUE
@@ -80,6 +80,8 @@ def _needs(mech, quantity, order) -> int:
     kind = quantity.kind
     if kind in JOINT_FORCES or kind in EFFICIENCY:
         return 2 if mech.dynamics is not None else 0
+    if kind in MACHINE:
+        return 1
     if kind in ("instant_centre", "instant_centre_distance", "velocity_ratio",
                 "least_speed_at"):
         return 1
@@ -511,6 +513,9 @@ def value_of(mech, name, kin, loads, context=None):
     if quantity.kind in EFFICIENCY:
         from linkcli.answers.quantities.efficiency import efficiency_value
         return efficiency_value(quantity, kin, context or Context(mech, None, kin))
+    if quantity.kind in MACHINE:
+        from linkcli.answers.quantities.machine import reduced_value
+        return reduced_value(mech, quantity, kin)
     if quantity.kind in TEXTBOOK:
         return textbook_value(quantity, order, kin, context or Context(mech, None, kin))
     if quantity.kind == "load":

@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 
 from linkcli.answers import quantities
+from linkcli.model.regime import KINDS as REGIME_KINDS
 from linkcli.errors import InputError
 from linkcli.model.mechanism import limit_refusal, split_rate
 from linkcli.runs.limits.extremes import num
@@ -73,10 +74,19 @@ def is_limit(mech, name) -> bool:
     return getattr(mech.quantities.get(name), "limit", False)
 
 
+#: kinds of answers that are one value for the whole motion of a machine (runs.machine_motion,
+#: runs.machine_regime), not a function of the driver: a sweep leaves them out, as a limit
+WHOLE = ("motion",) + REGIME_KINDS
+
+
+def is_whole(mech, name) -> bool:
+    return getattr(mech.quantities.get(name), "kind", None) in WHOLE
+
+
 def pointwise(mech, names):
-    """``names`` without the limits of the motion (one value for a range, not a function of
-    the driver): what a sweep can list."""
-    return [n for n in names if not is_limit(mech, n)]
+    """``names`` without the limits of the motion and the answers of a machine's whole motion
+    (one value, not a function of the driver): what a sweep can list."""
+    return [n for n in names if not is_limit(mech, n) and not is_whole(mech, n)]
 
 
 def sweep_names(mech, names, key="--names"):
@@ -84,10 +94,14 @@ def sweep_names(mech, names, key="--names"):
     motion, which are one value for a range; asking a sweep for one is refused."""
     if names is None:
         report = quantities.report_names(mech)
-        if not any(is_limit(mech, n) for n in report):
+        if not any(is_limit(mech, n) or is_whole(mech, n) for n in report):
             return None
         return pointwise(mech, report) or ["q"]
     for name in names:
+        if is_whole(mech, name):
+            raise InputError(f"'{name}' is an answer of the machine's whole motion, one value, "
+                             "not a function of the driver", file=mech.file, key=key,
+                             hint="print it with 'linkcli solve'")
         if is_limit(mech, name):
             raise InputError(f"'{name}' is a limit of the motion, one value for the whole range "
                              "of the driver, not a function of it", file=mech.file, key=key,

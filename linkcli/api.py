@@ -11,11 +11,14 @@ so the model itself never imports a solver.
 """
 from __future__ import annotations
 
+import dataclasses
+from collections.abc import Mapping
+
 from linkcli.runs.limits.names import sweep_names
 from linkcli.answers.quantities import Result
 from linkcli.runs.sheet import evaluate
 from linkcli.runs.sweep.blocks import Sweep, sweep
-from linkcli.errors import LinkcliError
+from linkcli.errors import InputError, LinkcliError
 from linkcli.input.document import build
 from linkcli.input.source import load_file, load_text
 from linkcli.kinematics.compiled import switch
@@ -48,8 +51,13 @@ class Linkage:
         ``values`` maps every report name to its value in display units.
         ``method`` 'newton' uses Newton-Raphson on all constraint equations
         (relative tolerance ``tol``) instead of the closed form of the groups.
+
+        With several drivers (``drivers:``) ``q``, ``qdot`` and ``qddot`` are the first
+        driver's, the others held at the file's values and rates; a mapping
+        ``{driver: value}`` sets any of them (one it leaves out keeps the file's).
         """
-        return evaluate(self.model, q, qdot, qddot, names=names, method=method, tol=tol)
+        model, q, qdot, qddot = per_driver(self.model, q, qdot, qddot)
+        return evaluate(model, q, qdot, qddot, names=names, method=method, tol=tol)
 
     def sweep(self, q, qdot=None, qddot=None, *, names=None, method="closed",
               tol=None, ties=None) -> Sweep:
@@ -114,3 +122,50 @@ def load(path: str, k: int | None = None) -> Linkage:
 def loads(text: str, k: int | None = None, name: str = "<text>") -> Linkage:
     """Like :func:`load`, from YAML text."""
     return Linkage(build(load_text(text, name), k))
+
+
+def per_driver(model, q, qdot, qddot) -> tuple:
+    """(model, q, qdot, qddot) with a mapping ``{driver: value}`` of ``q``, ``qdot`` or
+    ``qddot`` (display units) written into the model's other drivers, and the first
+    driver's entry (None: the file's) left as the argument.  A list or tuple for a
+    mechanism of several drivers is refused: it would read as values of the first."""
+    given = (q, qdot, qddot)
+    coords = list(model.coordinates)
+    names = [c.name for c in coords]
+    if not any(isinstance(x, Mapping) for x in given):
+        if len(coords) > 1 and any(isinstance(x, (list, tuple)) for x in given):
+            raise InputError(f"q, qdot and qddot of a mechanism of {len(coords)} drivers are "
+                             f"the first driver's ({names[0]}), a number or a NumPy array of "
+                             f"its values; a list or tuple would read as values of "
+                             f"{names[0]} alone", file=model.file, key="q",
+                             hint="give each driver by name: {" + ", ".join(
+                                 f"'{n}': ..." for n in names) + "}")
+        return model, q, qdot, qddot
+    firsts = []
+    for order, (field, x) in enumerate(zip(("value", "rate", "accel"), given)):
+        if not isinstance(x, Mapping):
+            firsts.append(x)
+            continue
+        for name in x:
+            if name not in names:
+                raise InputError(f"{name}: not a driver of this file; its drivers: "
+                                 + ", ".join(names), file=model.file, key=name,
+                                 hint="name the drivers as the file does")
+        for i, c in enumerate(coords[1:], start=1):
+            if c.name in x:
+                coords[i] = dataclasses.replace(c, **{field: _number(model, c, x[c.name])
+                                                      * model.units.display(c.base, order)[1]})
+        firsts.append(x.get(names[0]))
+    if coords == list(model.coordinates):
+        return (model, *firsts)
+    model = dataclasses.replace(model, coordinates=tuple(coords), driver=coords[0])
+    return (model, *firsts)
+
+
+def _number(model, driver, value) -> float:
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{driver.name}: {value!r} is not a number; a driver other than the "
+                         f"first takes one value per call", file=model.file, key=driver.name,
+                         hint="sweep the first driver, or call once per value") from None

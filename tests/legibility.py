@@ -12,9 +12,10 @@ Everything is in pixels of the figure at its own dpi, after ``canvas.draw()``:
   marker, as rendered: its path in pixels sampled every pixel, each sample widened by
   half the line width (markers: a disc of their size); fills are not strokes (a text on
   a light, translucent plate stays readable);
-- a label sits on a stroke when a sample falls inside its box shrunk on every side by
-  ``TOLERANCE`` times its font size: a stroke may graze the edge of the label that names
-  it, never cross its letters;
+- a label sits on a stroke when a sample falls inside its box shrunk by ``TOLERANCE``
+  times its font size at the top and bottom (the blank of the line's ascent and descent)
+  and ``ACROSS`` times at the sides (where the first and last letters begin): a stroke
+  may graze the edge of the label that names it, never cross its letters;
 - a label is cut when its box leaves the figure, or the axes' frame where the axes are
   shown (ticks and their numbers lie outside it).
 """
@@ -23,6 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 TOLERANCE = 0.25        # of the font size: how far a stroke may reach into a label's box
+ACROSS = 0.1            # from its left or right side (the letters begin at the box's sides)
 
 
 def _pixels(fig, points):
@@ -121,7 +123,7 @@ def defects(fig) -> list[str]:
             for other, b, _ in boxes[:i]:
                 if box[0] < b[2] and b[0] < box[2] and box[1] < b[3] and b[1] < box[3]:
                     found.append(f"{name} over {other.get_text()!r}")
-            inner = box + TOLERANCE * size * np.array([1, 1, -1, -1])
+            inner = box + size * np.array([ACROSS, TOLERANCE, -ACROSS, -TOLERANCE])
             if len(points) and inner[0] < inner[2] and inner[1] < inner[3]:
                 inside = ((points[:, 0] + pads > inner[0]) & (points[:, 0] - pads < inner[2]) &
                           (points[:, 1] + pads > inner[1]) & (points[:, 1] - pads < inner[3]))

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import linkcli
+from linkcli.errors import InputError
 from linkcli.kinematics.closed_form import residuals, unit_rates
 from linkcli.kinematics.solvers import solver_for
 
@@ -398,3 +399,32 @@ def test_a_planetary_differential_against_willis():
     assert values["arm_angledot"] * rpm == pytest.approx((sun * 30 + ring * 90) / 120, rel=1e-9)
     assert values["planet_angledot"] * rpm == pytest.approx((ring * 90 - sun * 30) / 60,
                                                             rel=1e-9)
+
+
+# --- the Python API: each driver by name -------------------------------------------------
+def _rewritten(replacements):
+    with open(os.path.join(DATA, "five-bar.yaml"), encoding="utf-8") as handle:
+        text = handle.read()
+    for old, new in replacements:
+        assert old in text
+        text = text.replace(old, new)
+    return linkcli.loads(text, name="five-bar.yaml").solve().values
+
+
+def test_api_sets_each_driver_by_name_as_the_file_would():
+    linkage = linkcli.load(os.path.join(DATA, "five-bar.yaml"))
+    got = linkage.solve({"phi1": 30, "phi2": 100}, {"phi2": -2}, {"phi1": 1.5}).values
+    want = _rewritten([("value: 90, rate: 10, accel: 0", "value: 30, rate: 10, accel: 1.5"),
+                       ("value: 60, rate: -5", "value: 100, rate: -2")])
+    assert set(got) == set(want)
+    for name in want:
+        assert got[name] == pytest.approx(want[name], rel=1e-12, abs=1e-9), name
+
+
+@pytest.mark.parametrize("q, words", [((30.0, 100.0), "a list or tuple would read"),
+                                      ({"phi3": 1}, "phi3: not a driver"),
+                                      ({"phi2": [1, 2]}, "takes one value per call")])
+def test_api_refuses_driver_values_it_would_misread(q, words):
+    linkage = linkcli.load(os.path.join(DATA, "five-bar.yaml"))
+    with pytest.raises(InputError, match=words):
+        linkage.solve(q)

@@ -25,6 +25,7 @@ also gives its dimension from those of its names (:meth:`Expression.dimension`).
 from __future__ import annotations
 
 import ast
+import functools
 import math
 import re
 
@@ -234,6 +235,12 @@ def _finite(number, what: str) -> float:
 
 
 def _in_range(value, what: str):
+    """``value`` unless one of its numbers is 0 < |x| < MIN_MAGNITUDE (ExpressionError)."""
+    if type(value) is float:        # a plain number: the same rule without NumPy's overhead
+        if value != 0 and abs(value) < MIN_MAGNITUDE:
+            raise ExpressionError(f"{what} is too small (0 < |x| < {MIN_MAGNITUDE:g})",
+                                  hint="write 0, or use a larger unit")
+        return value
     small = (value != 0) & (np.abs(value) < MIN_MAGNITUDE)
     if np.any(small):
         raise ExpressionError(f"{what} is too small (0 < |x| < {MIN_MAGNITUDE:g})",
@@ -241,8 +248,11 @@ def _in_range(value, what: str):
     return value
 
 
+@functools.lru_cache(maxsize=4096)
 def _parse(text):
-    """(source, tree) of ``text``; the length and the grammar are checked here."""
+    """(source, tree) of ``text``; the length and the grammar are checked here.  Kept per
+    text (a file built again for each value of a parameter parses the same texts): the tree
+    is only read by the walks, never changed, and a text that fails is not kept."""
     if len(text) > MAX_LENGTH:
         raise ExpressionError(f"expression longer than {MAX_LENGTH} characters")
     source = text.strip()

@@ -441,10 +441,13 @@ def split_rate(name: str, names=()):
     'wd'); the reading whose base is one of ``names`` (the file's quantities) is taken, and
     the second rate where none or both are (both defined is refused when the file is read:
     input.quantities)."""
-    readings = [(name[:-len(suffix)], order) for suffix, order in (("ddot", 2), ("dot", 1))
-                if name.endswith(suffix) and len(name) > len(suffix)]
-    known = [r for r in readings if r[0] in names]
-    return (known or readings or [(name, 0)])[0]
+    if not name.endswith("dot"):        # no reading as a rate
+        return name, 0
+    if name.endswith("ddot") and len(name) > 4:
+        if name[:-4] in names or name[:-3] not in names:
+            return name[:-4], 2
+        return name[:-3], 1
+    return (name[:-3], 1) if len(name) > 3 else (name, 0)
 
 
 def limit_refusal(name: str, quantity: Quantity, order: int) -> str | None:

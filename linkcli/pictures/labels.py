@@ -5,8 +5,9 @@ A label is tried where it was drawn, then at candidate spots on rings around it
 (:data:`DIRECTIONS` a ring, the rings :data:`STEP` font sizes apart), scored by its
 collisions: with the labels placed before it, with every stroke of the axes (lines,
 outlines, arcs, arrows, markers; a stroke may reach :data:`CLEAR` font sizes into the
-label's box, so that a label may touch the line it names) and with the edge (the axes'
-frame where the axes are shown, else the figure).  The nearest free spot is taken.  A
+label's box at the top or bottom and :data:`CLEAR_SIDE` at its sides, so that a label
+may touch the line it names) and with the edge (the axes' frame where the axes are
+shown, else the figure).  The nearest free spot is taken.  A
 label moved further than :data:`LEADER` font sizes gets a thin leader line back to the
 point it names (an annotation's point, else where it was drawn), and its spot must
 leave that line off the other labels; where the point is hemmed in by labels, the
@@ -19,7 +20,7 @@ the axes' layout is final.
 """
 from __future__ import annotations
 
-import math
+import functools
 
 import numpy as np
 
@@ -27,7 +28,8 @@ GAP = 2.0               # pixels kept between two labels, and between a label an
 STEP = 0.4              # font sizes between two rings of candidate spots
 RINGS = 24              # rings tried around a label (twice as many where none is free)
 DIRECTIONS = 16         # candidate spots a ring
-CLEAR = 0.15            # font sizes a stroke may reach into a label's box
+CLEAR = 0.15            # font sizes a stroke may reach into a label's box, at the top or bottom
+CLEAR_SIDE = 0.05       # and at its left or right side, where its letters begin
 LEADER = 1.6            # font sizes moved beyond which a leader line is drawn
 WIDEN = 0.12            # of the view, added on each side when a label finds no spot
 WIDENINGS = 3
@@ -124,12 +126,15 @@ def hits(boxes, segments, pads):
 # --- candidate spots -------------------------------------------------------------------------
 def _moves(size, rings):
     """(m, 2) pixel moves: none first, then ``rings`` rings outwards."""
-    moves = [(0.0, 0.0)]
-    for ring in range(1, rings + 1):
-        r = ring * STEP * size
-        moves += [(r * math.cos(2 * math.pi * i / DIRECTIONS),
-                   r * math.sin(2 * math.pi * i / DIRECTIONS)) for i in range(DIRECTIONS)]
-    return np.array(moves)
+    return _unit_moves(rings) * (STEP * size)
+
+
+@functools.lru_cache(maxsize=None)
+def _unit_moves(rings):
+    angles = 2 * np.pi * np.arange(DIRECTIONS) / DIRECTIONS
+    ring = np.stack([np.cos(angles), np.sin(angles)], axis=1)
+    steps = np.repeat(np.arange(1, rings + 1), DIRECTIONS)[:, None]
+    return np.vstack([np.zeros((1, 2)), steps * np.tile(ring, (rings, 1))])
 
 
 def _overlaps(boxes, others):
@@ -152,8 +157,7 @@ class _Layout:
     def costs(self, boxes, size, anchor):
         """(collisions of each candidate box: labels 10, the edge 10, strokes 1; whether
         its leader line, from ``anchor`` when the box is far, crosses a placed label)."""
-        clear = CLEAR * size
-        inner = boxes + np.array([clear, clear, -clear, -clear])
+        inner = boxes + size * np.array([CLEAR_SIDE, CLEAR, -CLEAR_SIDE, -CLEAR])
         on_lines = crossing(inner, self.segments, self.pads).astype(int)
         padded = boxes + np.array([-GAP, -GAP, GAP, GAP])
         on_labels = _overlaps(padded, self.placed)

@@ -169,4 +169,20 @@ def _contacts(w) -> list:
                 side=side, dir=w.axis(r.direction), other=r.other, t=r.track,
                 R=w.length(r.track_radius),
                 oside=w.w["left"] if r.other_side > 0 else w.w["right"], **common))
+            if r.slip:
+                out[-1] += "; " + w.w["belt_slip"].format(
+                    s=w.num(100 * r.slip), disc=r.disc, kept=w.num(1 - r.slip))
+    return out + _gears(w)
+
+
+def _gears(w) -> list:
+    """Each gear of ``gears:`` as the file gives it: teeth, module or diametral pitch."""
+    out = []
+    for g in w.mech.gears.values():
+        key, value, unit = g.pitch
+        pitch = f"{key.replace('_', ' ')} {w.num(value)} {unit}"
+        out.append(w.w["gear"].format(name=g.name, z=g.teeth, pitch=pitch,
+                                      r=w.length(g.radius), phi=w.angle(g.pressure_angle),
+                                      a=w.length(g.addendum),
+                                      internal=w.w["gear_internal"] if g.internal else ""))
     return out

@@ -92,6 +92,18 @@ PHRASES = {
         "{side} lungo {dir}, fino al disco {other} (centro {t}, raggio {R}), sulla sua "
         "{oside}",
     ),
+    "belt_slip": (
+        "the belt slips by {s} %: pulley {disc} turns at {kept} of the speed the belt gives it",
+        "la cinghia slitta del {s} %: la puleggia {disc} gira a {kept} della velocità che la "
+        "cinghia le darebbe",
+    ),
+    "gear": (
+        "gear {name}: {z} teeth, {pitch} (pitch radius {r}), pressure angle {phi}, addendum "
+        "{a}{internal}",
+        "ruota {name}: {z} denti, {pitch} (raggio primitivo {r}), angolo di pressione {phi}, "
+        "addendum {a}{internal}",
+    ),
+    "gear_internal": (", teeth cut inside", ", dentatura interna"),
     "driver": ("driver: {q} = {what} = {value}", "movente: {q} = {what} = {value}"),
     "rate": ("{q}' = {rate}", "{q}' = {rate}"),
     "accel": ("{q}'' = {accel}", "{q}'' = {accel}"),

@@ -383,7 +383,7 @@ class Mechanism:
     clutch: object = None
 
     def __post_init__(self):
-        if not self.coordinates:
+        if not self.coordinates and self.driver is not None:    # a clutch problem has none
             self.coordinates = (self.driver,)
 
     @property

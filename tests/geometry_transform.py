@@ -244,10 +244,10 @@ class Similarity:
                                           "angle": lambda v, p: self.angle(v)}), **offset}
 
     def sec_driver(self, spec, path):
-        kind = next(k for k in ("angle", "length", "x", "y") if k in spec)
+        kind = next(k for k in ("angle", "length", "x", "y", "payout") if k in spec)
         if kind == "angle":
             value, rate = self.angle, None
-        elif kind == "length":
+        elif kind in ("length", "payout"):     # a pay-out: the cord unwound since the figure
             value = rate = lambda v: self.length(v)
         else:
             self.no_turn(path + (kind,), "a driver along the frame's axis")

@@ -205,7 +205,8 @@ class Sites:
             driver = drivers[0]
         self.driver_base = None
         if driver is not None:
-            self.driver_base = "angle" if "angle" in driver else "length"
+            # a pay-out's q is its disc's turn (its value and rates are lengths)
+            self.driver_base = "angle" if "angle" in driver or "payout" in driver else "length"
         self.bases = {}
         for name, spec in (data.get("coordinates") or {}).items():
             if isinstance(spec, dict):
@@ -358,7 +359,10 @@ class Sites:
 
     def _driver(self, value, path, base=None):
         base = base or self.driver_base
+        if isinstance(value, dict) and "payout" in value:
+            base = "length"             # the length of cord unwound
         self._only(value, path, {"angle": NAME, "length": NAME, "x": NAME, "y": NAME,
+                                 "payout": NAME,
                                  "value": base,
                                  "rate": "angular_rate" if base == "angle" else "length_rate",
                                  "accel": "angular_accel" if base == "angle"

@@ -2,7 +2,8 @@
 
 A crank-slider's reduced equation J*(q) q'' + 1/2 dJ*/dq q'^2 = Q(q, q') driven by a linear
 motor (tests/regime_cases.py): its regime found by shooting in q (linkcli.forces.regime),
-against a hand-written solve_ivp of the same equation in time, from 0.8 of the balance
+against a hand-written solve_ivp of the same equation in time (and the crank press of
+docs/examples/machine-press.yaml from its file: loaded, read over a cycle, shot), from 0.8 of the balance
 speed, integrated until the speeds of two cycles agree to 1e-9 (the transient is then
 over); the same with a constant driving torque by the energy method (against one cycle
 integrated in time from the orbit's speed at q0); the flywheel for delta = 0.01, books'
@@ -75,9 +76,30 @@ def transient(cycle, w0, settle=1e-9, most=400):
     return most, now
 
 
+def press_text():
+    """docs/examples/machine-press.yaml (a crank press driven by an induction motor, a punch
+    over a third of the turn) asked for its regime and its flywheel."""
+    text = open(os.path.join(ROOT, "docs", "examples", "machine-press.yaml")).read()
+    text = text.replace("motion: {until: 20}", "motion:\n  until: 20\n  flywheel: {fluctuation: 0.02}")
+    head = text[:text.index("quantities:")]
+    return head + ("quantities:\n  wm: {regime: mean_speed}\n  delta: {regime: fluctuation}\n"
+                   "  Ie: {flywheel: exact}\nreport:\n  motion: [wm, delta, Ie]\n")
+
+
+def from_file():
+    """The regime of the press from its file: loaded, its machine read over a cycle, shot."""
+    import linkcli
+    from linkcli.runs import machine_regime
+
+    return machine_regime.solved(linkcli.loads(press_text(), None, "press.yaml").model)
+
+
 def main():
     os.makedirs(OUT, exist_ok=True)
     rows = {}
+    t_file, c_file, reg_f = best(from_file)
+    rows["from the file"] = {"direct_s": t_file, "direct_cpu_s": c_file, "shots": reg_f.shots,
+                             "delta": reg_f.fluctuation}
     cyc = slider_crank(flywheel=0.3)
     t_direct, c_direct, reg = best(lambda: rg.regime(cyc))
     t_ivp, c_ivp, (cycles, (w_max, w_min, w_mean)) = best(
@@ -109,6 +131,10 @@ def main():
                 f"{s['transient_cycles']:7d}  speeds vs transient: max {s['rel_err_max_speed']:.1e},"
                 f" min {s['rel_err_min_speed']:.1e}, average {s['rel_err_average_speed']:.1e}")
     text.append(f"{'energy method':22s} {_pair(rows['energy method'], 'direct'):>16s}")
+    r = rows["from the file"]
+    text.append(f"{'press file (shooting)':22s} {_pair(r, 'direct'):>16s} {'':16s} {'':7s}  "
+                f"loaded, read over a cycle and shot ({r['shots']} shots), delta "
+                f"{r['delta']:.6g}")
     f = rows["flywheel delta 0.01"]
     text.append(f"{'flywheel (exact)':22s} {_pair(f, 'direct'):>16s} {'':16s} "
                 f"{f['transient_cycles']:7d}  books {f['books']:.6g}, exact {f['exact']:.6g} "

@@ -209,6 +209,15 @@ def test_a_diametral_pitch_read_per_metre_is_caught(monkeypatch):
     assert found, "planted 'diametral pitch per metre' not caught"
 
 
+def test_a_motor_speed_read_in_rad_per_s_is_caught(monkeypatch):
+    """A motor's no-load speed read in rad/s whatever the file's angular rate (1500 rpm taken
+    as 1500 rad/s): the press rewritten in deg/s starts up otherwise."""
+    from linkcli.input import machine
+    found = caught(lambda: check("docs/examples/machine-press.yaml", SYSTEMS["us"]),
+                   lambda: monkeypatch.setattr(machine, "rate_factor", lambda units: 1.0))
+    assert found, "planted 'motor speed in rad/s' not caught"
+
+
 def caught(compare, plant) -> list:
     """What ``compare()`` finds once ``plant()`` has put a defect in (the files' own answers
     solved again with it), having found nothing before."""

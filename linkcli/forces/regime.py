@@ -47,6 +47,9 @@ BALANCED = 1e-6
 RTOL = 1e-10
 #: Newton iterations of the shooting before it is refused
 ITERATIONS = 30
+#: the residual of the shooting, as a fraction of the energy, taken as the integration's
+#: noise where Newton's steps stop reducing it (a load switched on over part of a cycle)
+NOISE = 1e-7
 
 
 @dataclass(frozen=True)
@@ -380,15 +383,16 @@ def shoot(cycle: Cycle) -> Regime:
     W = work(frozen)
     drift = (W(cycle.start + cycle.period) - W(cycle.start)) / cycle.period
     E0 = start_energy(frozen, lambda q: W(q) - drift * (q - cycle.start), wb)
-    scale, F = E0, math.inf
+    scale, F, last = E0, math.inf, math.inf
     table = Tabled(cycle)
     for shots in range(1, ITERATIONS + 1):
         end, S, sol = one_period(cycle, E0, table)
         if sol is None:                 # it stopped within the cycle: start it faster
             E0 *= 2.0
             continue
-        F = end - E0
-        if abs(F) <= 10 * RTOL * scale:
+        F, last = end - E0, abs(F)
+        # converged, or at the integration's noise (a step no longer halves the residual)
+        if abs(F) <= 10 * RTOL * scale or abs(F) <= NOISE * scale and abs(F) > 0.5 * last:
             if S >= 1.0:
                 raise RegimeError(f"the periodic orbit (energy {E0:.6g} J at q0) repels: "
                                   f"its multiplier over a cycle is {S:.6g} >= 1, so the "

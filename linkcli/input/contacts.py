@@ -23,12 +23,18 @@ from __future__ import annotations
 
 import dataclasses
 
-from linkcli.model.exact import cis
-from linkcli.model.mechanism import FRAME, Rolling
+from linkcli.model.exact import cis, phase
+from linkcli.model.mechanism import FRAME, Driver, Rolling
 
 SIDES = {"left": 1, "right": -1}
 #: relative tolerance of the figure checks (the figure is approximate)
 FIGURE_TOL = 0.02
+
+
+def turn_per_payout(cord) -> float:
+    """d theta / d s = -side / r: the disc's turn per length of ``cord`` paid out
+    (``ContactsSection.payout``)."""
+    return -cord.side / cord.radius
 
 
 class ContactsSection:
@@ -48,7 +54,39 @@ class ContactsSection:
                 entry = self.block(reader, name, value, path, units, bodies, figure)
                 if entry is not None:
                     out[name] = entry
+        self.contact_table = (out, bodies, figure)
         return out
+
+    def payout(self, spec, path, units, name) -> Driver:
+        """A cord's pay-out s as the driver: the length of cord unwound from its disc,
+        measured relative to the disc (0 on the figure).  The cord leaves the disc along a
+        fixed direction u from the tangent point T = C + side r i u, which moves with the
+        centre C; the disc's point at T moves at v_C + i omega (T - C) = v_C - side r omega u,
+        the cord's with it (it does not slip), so the cord passes T relative to the disc at
+        s' = -side r omega: the pay-out drives the disc's turn, theta = theta_0 - side s / r,
+        omega = -side s' / r (q is that angle, the disc's vector C -> M)."""
+        where = path + ("payout",)
+        table, bodies, figure = getattr(self, "contact_table", ({}, {}, {}))
+        if "angle" in spec or "length" in spec or "x" in spec or "y" in spec:
+            raise self.error(path, "give exactly one of angle: [P, Q], length: [P, Q], x: P, "
+                             "y: P, payout: CORD")
+        cords = {n for n, r in table.items() if r.kind in ("cord", "belt")}
+        cord = spec["payout"]
+        if isinstance(cord, str) and cord in table and cord not in cords:
+            raise self.error(where, f"'{cord}' is a rolling contact, not a cord: a pay-out is "
+                             "the length of a cord unwound from its disc",
+                             hint=f"name a cord of 'cords:' ({', '.join(sorted(cords)) or 'none'})")
+        cord = self.name(cord, where, cords, "cord")
+        r = table[cord]
+        disc = bodies[r.disc]
+        mark = disc.points[1]
+        theta0 = phase(figure[mark] - figure[r.center])
+        s = self.number(spec["value"], path + ("value",), "length", units)
+        rate, accel = (self.driver_rate(spec, path, key, "length", order, units)
+                       for order, key in ((1, "rate"), (2, "accel")))
+        k = turn_per_payout(r)
+        return Driver("angle", r.center, mark, theta0 + k * s, k * rate, k * accel, name,
+                      payout=cord)
 
     def disc_body(self, value, path, bodies):
         if isinstance(value, str) and value in bodies and bodies[value].kind == "link":

@@ -26,8 +26,10 @@ class LoadsSection:
     def driven(self, value, path, units, pool, name="q") -> Driver:
         """A driver's coordinate, its value (the figure's) and its rate and accel (0 when
         not given), in SI."""
-        spec = self.mapping(value, path, {"angle", "length", "x", "y", "value", "rate", "accel"},
-                            ("value",))
+        spec = self.mapping(value, path, {"angle", "length", "x", "y", "payout", "value", "rate",
+                                          "accel"}, ("value",))
+        if "payout" in spec:
+            return self.payout(spec, path, units, name)
         kind, a, b = self.coordinate_kind(spec, path, pool)
         base = "angle" if kind == "angle" else "length"
         value = self.number(spec["value"], path + ("value",), base, units)
@@ -90,9 +92,10 @@ class LoadsSection:
 
     def coordinate_kind(self, spec, path, pool) -> tuple:
         """(kind, a, b) of a driver or coordinate: angle or length of a -> b, x or y of a."""
-        kinds = [k for k in ("angle", "length", "x", "y") if k in spec]
+        kinds = [k for k in ("angle", "length", "x", "y", "payout") if k in spec]
         if len(kinds) != 1:
-            raise self.error(path, "give exactly one of angle: [P, Q], length: [P, Q], x: P, y: P")
+            raise self.error(path, "give exactly one of angle: [P, Q], length: [P, Q], x: P, y: P"
+                             + (", payout: CORD" if "payout" in spec else ""))
         kind = kinds[0]
         if kind in ("angle", "length"):
             return (kind,) + self.pair(spec[kind], path + (kind,), pool)

@@ -37,6 +37,11 @@ MOTOR_KEYS = {"stall", "no_load", "speeds", "torques", "torque"}
 MOTOR_NAMES = ("w", "q", "t")
 
 
+def rate_factor(units) -> float:
+    """The SI value of one unit of a motor's speed: the file's angular rate (rpm: 2 pi/60)."""
+    return units.display("angle", 1)[1]
+
+
 def is_machine(data) -> bool:
     """Whether the file asks for the motion under given loads (or the reduced torque of
     every load): then every load is known.  J* and dJ*/dq alone may be asked in any file
@@ -90,7 +95,7 @@ class MachineSection:
                              "speeds and torques, or torque (an expression of w)")
         kind = given[0]
         torque_f = units.factor("torque")
-        rate = units.display("angle", 1)[1]
+        rate = rate_factor(units)
         if kind == "stall":
             for key in ("speeds", "torques", "torque"):
                 if key in value:

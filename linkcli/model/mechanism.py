@@ -120,7 +120,9 @@ class Driver:
     kind 'angle': q is the angle of the vector a->b; 'length': q = |b - a|;
     'x' / 'y': q is that coordinate of point ``a``.  ``value`` is the
     figure's; ``rate`` and ``accel`` are the driver's (0 for coordinates); ``name`` is 'q'
-    for ``driver:``, the file's name of it otherwise.
+    for ``driver:``, the file's name of it otherwise.  ``payout`` names the cord whose
+    pay-out the file drives: q is then the angle of its disc's vector a->b, which the
+    pay-out s turns (theta = theta_0 - side s / r, ``input.contacts``).
     """
 
     kind: str
@@ -130,6 +132,7 @@ class Driver:
     rate: float
     accel: float
     name: str = "q"
+    payout: str | None = None
 
     @property
     def base(self) -> str:
@@ -139,6 +142,8 @@ class Driver:
     @property
     def words(self) -> str:
         """What it drives, in words: 'angle of A->B', 'length AB', 'x of B'."""
+        if self.payout is not None:
+            return f"angle of {self.a}->{self.b} (the pay-out of cord {self.payout})"
         return {"angle": f"angle of {self.a}->{self.b}", "length": f"length {self.a}{self.b}",
                 "x": f"x of {self.a}", "y": f"y of {self.a}"}[self.kind]
 
@@ -378,9 +383,12 @@ class Mechanism:
     motion: object = None
     #: name -> model.gears.Gear: the gears given by their teeth (``gears:``)
     gears: dict = field(default_factory=dict)
+    #: a clutch problem's shafts and clutch (``shafts:``, model.clutch.ClutchProblem): then
+    #: there is no linkage, and no driver
+    clutch: object = None
 
     def __post_init__(self):
-        if not self.coordinates:
+        if not self.coordinates and self.driver is not None:    # a clutch problem has none
             self.coordinates = (self.driver,)
 
     @property

@@ -28,6 +28,9 @@ from linkcli.model.machine import TURN, inside
 #: the splines' largest error at the grid's midpoints, relative to each column's scale
 SPLINE_TOL = 1e-10
 GRID = 256
+#: a point more than PERIODIC of the mechanism's size away from where it was a turn before:
+#: the mechanism does not repeat over a turn of the driver
+PERIODIC = 1e-9
 GRID_MOST = 16384
 #: solve_ivp's relative tolerance (the absolute one is 1e-2 of it, in rad and rad/s or m and
 #: m/s) and method
@@ -62,6 +65,7 @@ class Table(Direct):
 
     def __init__(self, machine):
         super().__init__(machine)
+        self.require_periodic()
         n = GRID
         while True:
             h = TURN / n
@@ -80,6 +84,16 @@ class Table(Direct):
         #: per interval, the four rows of the cubic's coefficients (lists: a step of the
         #: integration evaluates one interval, where Python's floats beat small arrays)
         self.rows = coefficients.tolist()                                  # (n, 4, k)
+
+    def require_periodic(self) -> None:
+        """Refuse (:class:`NotPeriodic`) a mechanism that is not where it was after a turn of
+        the driver (a cord wound on a drum, a disc rolling away): its coefficients need
+        not repeat."""
+        jt = self.machine.jet(np.array([0.0, TURN]))
+        size = self.machine.lag.size
+        if any(np.any(np.abs(np.diff(np.broadcast_to(z, (2,)))) > PERIODIC * size)
+               for z in jt.pos.values()):
+            raise NotPeriodic()
 
     def columns(self, q) -> np.ndarray:
         c = self.machine.coefficients(q)
@@ -108,13 +122,18 @@ def periodic_spline(y, h) -> np.ndarray:
                     axis=1)
 
 
+class NotPeriodic(Exception):
+    """The mechanism is not where it was after a turn of the driver."""
+
+
 def table_for(machine):
-    """A :class:`Table` where the driver turns through a whole turn, else :class:`Direct`."""
+    """A :class:`Table` where the driver turns through a whole turn and the mechanism comes
+    back to where it was, else :class:`Direct`."""
     if machine.angular:
         try:
             return Table(machine)
-        except SolveError:
-            pass                # the mechanism does not turn through a whole turn
+        except (SolveError, NotPeriodic):
+            pass                # no whole turn, or not the same mechanism after one
     return Direct(machine)
 
 
@@ -173,8 +192,8 @@ class Equation:
         if not 0 < J < self.limit:
             raise _Blocked(t, q, SolveError(
                 "the reduced inertia J* is zero: nothing with mass moves with the driver"
-                if J <= 0 else f"the reduced inertia J* grows without bound "
-                f"({J / self.limit * LIMIT:.3g} times its value at the start)"))
+                if J <= 0 else f"the reduced inertia J* grows without bound (beyond {LIMIT:g} "
+                "times its value at the start)"))
         if hold:
             Q -= hold * math.copysign(1.0, w) if w else max(-hold, min(hold, Q))
         return (Q - 0.5 * dJ * w * w) / J
@@ -391,15 +410,15 @@ def _torque_quantity():
     return Quantity("Q", "reduced_torque", "q")
 
 
-def _driver_text(mech, q) -> str:
+def _driver_text(mech, q, digits=6) -> str:
     unit, factor = mech.units.display(mech.driver.base, 0)
-    return f"{q / factor:.6g} {unit}"
+    return f"{q / factor:.{digits}g} {unit}"
 
 
 def blocked(mech, exc: _Blocked) -> SolveError:
     detail = getattr(exc.error, "detail", str(exc.error))
     return SolveError(f"the motion reaches a position the mechanism cannot pass at t = "
-                      f"{exc.t:.6g} s, q = {_driver_text(mech, exc.q)}: {detail}",
+                      f"{exc.t:.4g} s, q = {_driver_text(mech, exc.q, 4)}: {detail}",
                       file=mech.file, hint="a singular position (a dead centre of the "
                       "driver): start elsewhere, or drive the mechanism from another member")
 

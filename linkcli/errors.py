@@ -198,6 +198,32 @@ class FormulaLimit(SolveError):
         self.items = tuple(items)
 
 
+class ClutchError(SolveError):
+    """Two shafts and a clutch (or a brake) that cannot do what is asked: ``reason``
+    'never engages' (the friction torque can never equalise the speeds), 'slips again'
+    (after engagement the torque the clutch must pass exceeds its capacity), 'reverses' (a
+    shaft with a resisting torque would turn back) or 'never reaches' (a speed a shaft
+    does not reach); ``values`` the numbers the message names (N m, rad/s^2, s)."""
+
+    def __init__(self, detail: str, *, reason: str, values=None, **kw):
+        super().__init__(detail, **kw)
+        self.reason = reason
+        self.values = dict(values or {})
+
+
+class EfficiencyError(SolveError):
+    """An efficiency that is not defined where it is asked: ``reason`` 'no input' (the
+    unknown load does not drive the mechanism: its power is not positive), 'no ideal input'
+    (it would not drive it without friction), 'no ideal output' (the loads would not drive
+    the mechanism back even without friction) or 'never locks' (no friction up to a
+    million times the given one locks it); ``values`` the numbers the message names."""
+
+    def __init__(self, detail: str, *, reason: str, values=None, **kw):
+        super().__init__(detail, **kw)
+        self.reason = reason
+        self.values = dict(values or {})
+
+
 @dataclass
 class Caution:
     """A result that is given, but that the reader must look at: a figure far from the

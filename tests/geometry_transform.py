@@ -358,6 +358,24 @@ class Similarity:
     def _known(self, v, power):
         return v if v == "unknown" else self.length(v, power)
 
+    def sec_shafts(self, value, path):
+        """A clutch problem's shafts (docs/machines.md): nothing is placed in the plane;
+        inertias and torques scale as s^2, speeds are kept."""
+        return self._each(value, path, lambda spec, p: self._keys(spec, p, {
+            "inertia": lambda v, q: self.length(v, 2), "speed": None,
+            "torque": lambda v, q: self.length(v, 2), "resisting": lambda v, q: self.length(v, 2),
+            "motor": lambda v, q: self._keys(v, q, {"stall": lambda w, r: self.length(w, 2),
+                                                    "no_load": None})}))
+
+    def sec_clutch(self, spec, path):
+        """The clutch: its torque s^2, a plate's force s and radii s (mu F r: s^2)."""
+        return self._keys(spec, path, {
+            "between": None, "torque": lambda v, p: self.length(v, 2),
+            "plate": lambda v, p: self._keys(v, p, {
+                "mu": None, "force": lambda w, q: self.length(w),
+                "outer": lambda w, q: self.length(w), "inner": lambda w, q: self.length(w),
+                "pairs": None, "wear": None})})
+
     def sec_dynamics(self, spec, path):
         return self._keys(spec, path, {
             "gravity": self.gravity,
@@ -683,6 +701,11 @@ LENGTH_POWER = {
     **dict.fromkeys(("kg", "g", "t", "lb", "s", "min", "h", "ms", "rad", "deg", "rev", "turn",
                      "Hz", "rpm", "cpm", "1", "%"), 0),
 }
+
+
+def has_lengths(doc) -> bool:
+    """Whether a file writes lengths: a mechanism's frame, or a clutch problem's plate."""
+    return "frame" in doc or "plate" in (doc.get("clutch") or {})
 
 
 def length_power(unit: str):

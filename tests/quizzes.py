@@ -19,7 +19,10 @@ from linkcli.input.source import load_file  # noqa: E402
 from linkcli.model.mechanism import REPORT_SECTIONS  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SHIPPED = sorted(glob.glob(os.path.join(ROOT, "mechanisms", "*.yaml")))
+#: the shipped mechanisms; a clutch problem (shafts:, docs/machines.md) has no linkage to
+#: draw or state, and export refuses it
+SHIPPED = sorted(p for p in glob.glob(os.path.join(ROOT, "mechanisms", "*.yaml"))
+                 if "shafts" not in load_file(p).data)
 METHOD = {"triad-class3.yaml": "newton"}      # a class-III group: the closed form refuses it
 
 

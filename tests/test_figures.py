@@ -16,10 +16,12 @@ import re
 import pytest
 
 from legibility import defects
+from linkcli.input.source import load_file
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SHIPPED = sorted(os.path.basename(p) for p in glob.glob(os.path.join(ROOT, "mechanisms",
-                                                                     "*.yaml")))
+#: a clutch problem (shafts:, docs/machines.md) has no mechanism to draw: draw refuses it
+SHIPPED = sorted(os.path.basename(p) for p in glob.glob(os.path.join(ROOT, "mechanisms", "*.yaml"))
+                 if "shafts" not in load_file(p).data)
 METHOD = {"triad-class3.yaml": "newton"}      # a class-III group: the closed form refuses it
 
 

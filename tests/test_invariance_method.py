@@ -58,7 +58,8 @@ def _pair(path):
     try:
         linkage = linkcli.load(path)
         if linkage.model.driver is None or linkage.model.elements is not None:
-            pytest.skip("no driver (a vibration file's coordinates)")
+            pytest.skip("no driver (a vibration file's coordinates, or a clutch problem's "
+                        "shafts): no positions for a method to solve")
         closed = linkage.solver("closed")
     except LinkcliError as exc:
         pytest.skip(f"the closed form refuses: {exc}")

@@ -24,7 +24,9 @@ from linkcli.input.source import load_file
 from linkcli.texts import italian
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-FILES = sorted(glob.glob(os.path.join(ROOT, "mechanisms", "*.yaml")))
+#: a clutch problem (shafts:) has no worked solution: export refuses it (docs/machines.md)
+FILES = sorted(p for p in glob.glob(os.path.join(ROOT, "mechanisms", "*.yaml"))
+               if "shafts" not in load_file(p).data)
 #: the documentation's examples: cautions, design searches, friction circles, instability
 EXAMPLES = sorted(glob.glob(os.path.join(ROOT, "docs", "examples", "*.yaml")))
 METHOD = {"triad-class3.yaml": "newton"}      # a class-III group: the closed form refuses it

@@ -20,6 +20,7 @@ from linkcli.answers.quantities import TEXTBOOK, Result, plan_for, report_names
 from linkcli.errors import LinkcliError, SolveError
 from linkcli.kinematics.solvers import solver_for
 from linkcli.model.mechanism import split_rate
+from linkcli.input.source import load_file
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -30,7 +31,9 @@ def general_path(monkeypatch):
     monkeypatch.setattr(quantities, "straight_of", lambda *args: None)
 
 
-SHIPPED = sorted(glob.glob(os.path.join(ROOT, "mechanisms", "*.yaml")))
+#: a clutch problem (shafts:, docs/machines.md) has no driver values to plan
+SHIPPED = sorted(p for p in glob.glob(os.path.join(ROOT, "mechanisms", "*.yaml"))
+                 if "shafts" not in load_file(p).data)
 FOURBAR = """title: four-bar
 units: {length: mm, angle: deg}
 frame: {A0: [0, 0], B0: [300, 0]}

@@ -66,6 +66,8 @@ def model(name):
         evaluate(mech)                        # what `linkcli solve` answers
     except LinkcliError:
         return None
+    if mech.clutch is not None:         # shafts and a clutch: no formulas (docs/machines.md)
+        return None
     return mech, formulas(doc, seconds=SECONDS)
 
 

@@ -422,9 +422,14 @@ class Sites:
     def _quantities(self, value, path):
         limit_kind = self.driver_base
         for name, spec in self.items(value, path):
+            if isinstance(spec, dict) and "clutch" in spec:     # docs/machines.md
+                self._only(spec, path + (name,), {"clutch": NAME, "shaft": NAME, "unit": NAME,
+                                                  "time": "time", "speed": "angular_rate"})
+                continue
             known = dict.fromkeys(QUANTITY_WORDS, NAME)
             known.update({"from": limit_kind, "to": limit_kind, "time": "time",
-                          "axis": self._axis, "radius": "length", "when": self._when})
+                          "axis": self._axis, "radius": "length", "when": self._when,
+                          "stages": self._pure, "powers": self._pure})
             self._only(spec, path + (name,), known)
 
     def _motion(self, value, path):
@@ -445,9 +450,35 @@ class Sites:
             if isinstance(v, list) else self._numbers(v, p),
             "scale": lambda v, p: self._only(v, p, {"torque": "torque", "angle": "angle"})})
 
+    def _pure(self, value, path):
+        """A list of pure numbers (docs/machines.md: stages' efficiencies, and input powers of
+        which only the ratios count): kept as written."""
+        if not isinstance(value, list):
+            self._numbers(value, path)
+            return
+        for i, v in enumerate(value):
+            self.put(path + (i,), None, v)
+
+
     def _axis(self, value, path):
         if isinstance(value, dict):
             self._only(value, path, {"angle": "angle"})
+
+    def _shafts(self, value, path):
+        """A clutch problem's shafts (docs/machines.md)."""
+        for name, spec in self.items(value, path):
+            self._only(spec, path + (name,), {
+                "inertia": "inertia", "speed": "angular_rate", "torque": "torque",
+                "resisting": "torque",
+                "motor": lambda v, p: self._only(v, p, {"stall": "torque",
+                                                        "no_load": "angular_rate"})})
+
+    def _clutch(self, value, path):
+        self._only(value, path, {
+            "between": NAME, "torque": "torque",
+            "plate": lambda v, p: self._only(v, p, {
+                "mu": None, "force": "force", "outer": "length", "inner": "length",
+                "pairs": NAME, "wear": NAME})})
 
     def _dynamics(self, value, path):
         self._only(value, path, {"gravity": self._gravity, "bodies": self._bodies,
@@ -556,7 +587,9 @@ QUANTITY_WORDS = (
     "mode_shape", "natural_frequency", "phase", "spring_force", "stiffness_matrix",
     "transmissibility", "expr", "centre_distance", "contact_ratio", "min_teeth", "with",
     "regime", "flywheel", "reduced_inertia", "reduced_inertia_slope", "reduced_torque",
-    "motion")
+    "motion",
+    # efficiency questions (docs/machines.md): words, a load's or a slider's name
+    "efficiency", "ideal_load", "reverse_load", "self_locking", "at")
 IGNORED = {"title", "source", "notes", "statement", "units", "k", "report", "keys", "quiz",
            "equilibrium"}
 

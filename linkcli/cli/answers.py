@@ -48,7 +48,8 @@ def solve(file, k, form, decimals, lang, output, method, tol, reactions, symboli
                          "csv", key="--format", hint="give --format json for machine-readable "
                          "formulas")
     tol = check_tol(tol)
-    mech, doc = symbolic_load(file, k, symbolic, numbers, seconds, method=method, tol=tol)
+    mech, doc = symbolic_load(file, k, symbolic, numbers, seconds, method=method, tol=tol,
+                              clutch=True)
     decimals = mech.report.get("decimals", 1) if decimals is None else decimals
     from linkcli.runs.sheet import evaluate
     result = evaluate(mech, method=method, tol=tol)
@@ -88,7 +89,8 @@ def explain(file, k, pseudocode, output, method, symbolic, numbers, seconds):
                          key="--method", hint="drop --method newton for --pseudocode (a "
                          "class-III group is written as one call solved numerically)")
     not_an_input(output, file)
-    mech, doc = symbolic_load(file, k, symbolic, numbers, seconds, designed=pseudocode)
+    mech, doc = symbolic_load(file, k, symbolic, numbers, seconds, designed=pseudocode,
+                              clutch="explain")
     if pseudocode:
         from linkcli.texts.pseudocode import pseudocode as text
         out = text(mech)

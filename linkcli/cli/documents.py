@@ -58,6 +58,10 @@ def export(file, target, k_text, lang, decimals, tolerance, no_figure, no_given,
         raise InputError("the output file exists", file=output, key="-o",
                          hint="give --force to replace it, or another name")
     doc = load_file(file)
+    from linkcli.input.clutch import is_clutch
+    if is_clutch(doc.data):
+        from linkcli.cli.loading import refuse_clutch
+        refuse_clutch(file, "export as a quiz or a worked solution")
     ks = parse_k(k_text) if k_text is not None else None
     if (symbolic or numbers is not None) and target not in ("html", "markdown"):
         raise InputError("--symbolic goes with a worked solution (--to html or markdown)",

@@ -22,6 +22,7 @@ from linkcli.errors import InputError
               help="Vibrations: free response from 'initial', linear and nonlinear (s).")
 @click.option("--vary", default=None, metavar="NAME=FROM:TO:STEPS",
               help="Answers against a parameter of 'params' (any file, vibrations too).")
+@click.option("--clutch", is_flag=True, help="A clutch problem: the two shafts' speeds in time.")
 @click.option("--regime", is_flag=True, help="Machines: the speed over a cycle of the periodic "
               "regime and the turning-moment diagram with the areas that size the flywheel.")
 @click.option("--y", "names", multiple=True, metavar="NAME",
@@ -29,7 +30,7 @@ from linkcli.errors import InputError
                    "with --frf or --free, coordinates (default: every free one).")
 @K_OPTION
 @PICTURE_OPTION
-def plot(file, sweep, frf, modes, free, vary, regime, names, k, output):
+def plot(file, sweep, frf, modes, free, vary, regime, clutch, names, k, output):
     """Plot quantities of FILE against the driver, or a vibration problem's response.
 
     \b
@@ -39,16 +40,25 @@ def plot(file, sweep, frf, modes, free, vary, regime, names, k, output):
       linkcli plot mechanisms/polimi-2001-09-18-vibration.yaml --modes -o modes.png
       linkcli plot mechanisms/polimi-2001-09-18-vibration.yaml --vary ks=50:150:50 --y w1 -o w.png
       linkcli plot mechanisms/khurmi-16-12-engine-and-machine-torques.yaml --regime -o tm.png
+      linkcli plot mechanisms/bhandari-11-14-clutch-energy.yaml --clutch -o speeds.png
     """
     chosen = [flag for flag, value in (("--sweep", sweep), ("--frf", frf), ("--modes", modes),
                                        ("--free", free), ("--vary", vary),
-                                       ("--regime", regime)) if value]
+                                       ("--regime", regime), ("--clutch", clutch)) if value]
     if len(chosen) != 1:
-        raise InputError("give one of --sweep, --frf, --modes, --free, --vary, --regime",
-                         key="plot", hint="--sweep FROM:TO:STEPS --y NAME for a mechanism "
-                         "with a driver")
+        raise InputError("give one of --sweep, --frf, --modes, --free, --vary, --regime, "
+                         "--clutch", key="plot", hint="--sweep FROM:TO:STEPS --y NAME for a "
+                         "mechanism with a driver")
     not_an_input(output, file)
-    mech = load(file, k, designed=not vary)     # a design question: solved at each value
+    mech = load(file, k, designed=not vary, clutch=True if clutch else "plot against a driver")
+    if clutch:
+        if mech.clutch is None:
+            raise InputError("--clutch draws a clutch problem's speeds (a file with shafts: "
+                             "and clutch:)", file=file, key="--clutch",
+                             hint="--sweep FROM:TO:STEPS --y NAME for a mechanism")
+        from linkcli.pictures.clutch import speeds
+        speeds(mech, output)
+        return
     if regime:
         from linkcli.pictures.regime import plot_regime
         plot_regime(mech, output)
@@ -96,10 +106,10 @@ def draw(file, k, output, exam, lang, method):
     if exam:
         from linkcli.pictures.exam import draw_exam
         # the problem as asked: a design question's unknowns are not drawn solved
-        draw_exam(load(file, k, designed=False), output, lang=lang, method=method)
+        draw_exam(load(file, k, designed=False, clutch="draw"), output, lang=lang, method=method)
         return
     from linkcli.pictures.plotting import draw as make
-    make(load(file, k), output, method=method)
+    make(load(file, k, clutch="draw"), output, method=method)
 
 
 @click.command()
@@ -119,4 +129,4 @@ def animate(file, sweep, fps, k, output):
     """
     from linkcli.pictures.plotting import animate as make
     not_an_input(output, file)
-    make(load(file, k), output, sweep, fps)
+    make(load(file, k, clutch="animate"), output, sweep, fps)

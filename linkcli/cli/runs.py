@@ -170,7 +170,7 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
                              "parameter (--vary NAME=FROM:TO:STEPS)")
         from linkcli.runs import vary as vary_mod
         name, values = vary_mod.parse_vary(vary)
-        mech = load(file, k, designed=False)     # a design question: solved at each value
+        mech = load(file, k, designed=False, clutch=True)   # a design question: at each value
         check_every(every)
         variation = vary_mod.Variation(mech, name, values, chosen, method=method,
                                        tol=check_tol(tol))
@@ -180,7 +180,7 @@ def sweep(file, start, stop, vary, steps, step, form, every, names, decimals, me
             raise InputError("give --from and --to (the driver's range), or --vary "
                              "NAME=FROM:TO:STEPS (a parameter's)", key="--from")
         from linkcli.answers.quantities.drive import led_by
-        mech = led_by(load(file, k, method=method, tol=check_tol(tol)), lead)
+        mech = led_by(load(file, k, method=method, tol=check_tol(tol), clutch="sweep"), lead)
         q = driver_range(start, stop, steps, step)
         from linkcli.runs.limits.names import sweep_names
         chosen = sweep_names(mech, chosen)      # maxima, strokes ... are not functions of q
@@ -236,7 +236,7 @@ def limits(file, names, start, stop, form, decimals, k, output):
     """
     from linkcli.runs.limits import names as limit_names, search, table
     not_an_input(output, file)
-    mech = load(file, k)
+    mech = load(file, k, clutch="find the limits of")
     decimals = mech.report.get("decimals", 1) if decimals is None else decimals
     found = [search.find(mech, name, start, stop)
              for name in (names or limit_names.default_names(mech))]

@@ -21,6 +21,8 @@ from linkcli.input.source import Document
 from linkcli.input.quantities import FORCES, QuantitiesSection
 from linkcli.input.textbook import TextbookQuantities
 from linkcli.input.forces import ForceQuantities
+from linkcli.input.efficiency import EfficiencyQuantities
+from linkcli.input.clutch import ClutchSection, is_clutch
 from linkcli.input.limits import LimitsSection
 from linkcli.input.vibration import VibrationQuantities
 from linkcli.input.report import SECTIONS, ReportSection
@@ -43,7 +45,8 @@ TOP_KEYS = {"title", "source", "notes", "units", "k", "params", "frame", "points
             "actuators", "sliders", "driver", "drivers", "coordinates", "loads", "quantities",
             "report",
             "keys", "dynamics", "springs", "dampers", "excitation", "initial", "equilibrium",
-            "rolling", "cords", "statement", "quiz", "find", "motion", "gears"}
+            "rolling", "cords", "statement", "quiz", "find", "motion", "gears", "shafts",
+            "clutch"}
 VIBRATION_KEYS = ("springs", "dampers", "excitation", "initial", "equilibrium")
 
 __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS", "UNKNOWN",
@@ -51,9 +54,10 @@ __all__ = ["InputErrors", "Parser", "build", "split_rate", "SECTIONS", "TOP_KEYS
 
 
 class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSection,
-             TextbookQuantities, ForceQuantities, LimitsSection, VibrationQuantities,
-             ReportSection, KeysSection, DerivedSection, OscillationSection, FindSection,
-             MachineSection, RegimeSection, GearsSection):
+             TextbookQuantities, ForceQuantities, EfficiencyQuantities, LimitsSection,
+             VibrationQuantities, ReportSection, KeysSection, DerivedSection,
+             OscillationSection, FindSection, MachineSection, RegimeSection, GearsSection,
+             ClutchSection):
     """The whole document: units, params, frame and points, then each section."""
 
     def parse(self) -> Mechanism:
@@ -67,6 +71,8 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
                            hint="sections: " + ", ".join(sorted(TOP_KEYS)))
         units = self.block(self.units, data.get("units")) or Units()
         self.block(self.params, data)
+        if is_clutch(data):
+            return self.clutch_file(data, units)
         fixed = self.block(self.frame, data, units) or {}
         moving = self.block(self.moving, data, units, fixed) or {}
         pool = set(fixed) | set(moving)

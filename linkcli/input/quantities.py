@@ -26,6 +26,7 @@ from linkcli.model.units import ANGLE, FORCE, LENGTH, TORQUE
 from linkcli.input.derived import EXPR
 from linkcli.input.gears import GEARING
 from linkcli.input.oscillation import OSCILLATION
+from linkcli.input.efficiency import EFFICIENCY
 from linkcli.input.machine import MACHINE
 
 #: the kinds of a geometric quantity, each the YAML key that asks for it
@@ -45,7 +46,7 @@ LEVEL = {"speed": 1, "relative_speed": 1, "acceleration": 2, "tangential_acceler
 #: quantities of the position alone, listed with the positions or the velocities
 EITHER = ("instant_centre", "instant_centre_distance", "velocity_ratio", "least_speed_at")
 #: forces, listed with the statics
-FORCES = ("load", "reaction", "slider_force", "tension", "contact_force")
+FORCES = ("load", "reaction", "slider_force", "tension", "contact_force") + EFFICIENCY
 #: the quantities a velocity ratio may be of: those whose rate is linear in the velocities
 RATIO_OF = ("q", "x", "y", "angle", "length", "along", "normal_to", "relative", "rotation",
             "between")
@@ -162,6 +163,10 @@ class QuantitiesSection:
             return self.limit_quantity(name, value, path)
         if isinstance(value, dict) and EXPR in value:
             return self.expression_quantity(name, value, path)
+        if isinstance(value, dict) and "clutch" in value:
+            return self.clutch_quantity(name, value, path)
+        if isinstance(value, dict) and any(k in value for k in EFFICIENCY):
+            return self.efficiency_quantity(name, value, path, loads)
         if isinstance(value, dict) and any(k in value for k in GEARING):
             return self.gear_quantity(name, value, path)
         value = self.mapping(value, path, set(GEOMETRY) | {"component", "unit", "point",

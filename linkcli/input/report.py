@@ -30,7 +30,8 @@ SECTIONS = ("position", "velocity", "acceleration", "statics", "vibration", "poi
 
 
 #: the sections whose names are the quantities of one analysis, and what they are
-OWN_SECTIONS = {"motion": MACHINE, "vibration": VIBRATION}
+#: (a clutch problem's answers are listed with the motion: docs/machines.md)
+OWN_SECTIONS = {"motion": MACHINE + ("clutch",), "vibration": VIBRATION}
 OWN_WORDS = {"motion": ("machine dynamics", "reduced inertias and torques and the answers of "
                         "the motion in time"),
              "vibration": ("the vibration analysis", "natural frequencies, modes, matrices, "

@@ -26,6 +26,10 @@ def solver_for(mech, method="closed", tol=None):
     """The solver of ``mech`` for ``method`` ('closed' or 'newton', relative tolerance ``tol``)."""
     if method not in METHODS:
         raise InputError(f"unknown method {method!r}", key="method", hint="closed or newton")
+    if getattr(mech, "clutch", None) is not None:
+        raise InputError("a clutch problem (shafts and a clutch) has no linkage to solve",
+                         file=mech.file, key="shafts", hint="solve(), batch and check answer "
+                         "it (runs.sheet), without positions")
     cache = _solvers(mech)
     if method == "closed":
         key = ("closed",)

@@ -60,6 +60,13 @@ def of_quantity(mech, quantity) -> Dimension:
         return DIMENSIONS[mech.load_unit_kind(mech.loads[quantity.a])]
     if kind in ("reaction", "slider_force"):
         return FORCE_DIM
+    if kind in ("ideal_load", "reverse_load"):
+        return DIMENSIONS[mech.load_unit_kind(mech.loads[quantity.a])]
+    if kind in ("efficiency", "self_locking"):
+        return NONE
+    if kind == "clutch":
+        from linkcli.model.clutch import ANSWERS
+        return ANSWERS[quantity.a]
     if kind == "velocity_ratio":
         per = mech.coordinates[mech.driver_index(quantity.b)] if quantity.b else mech.driver
         return dimension(mech, quantity.a) / base_dimension(per.base)

@@ -383,9 +383,12 @@ class Mechanism:
     motion: object = None
     #: name -> model.gears.Gear: the gears given by their teeth (``gears:``)
     gears: dict = field(default_factory=dict)
+    #: a clutch problem's shafts and clutch (``shafts:``, model.clutch.ClutchProblem): then
+    #: there is no linkage, and no driver
+    clutch: object = None
 
     def __post_init__(self):
-        if not self.coordinates:
+        if not self.coordinates and self.driver is not None:    # a clutch problem has none
             self.coordinates = (self.driver,)
 
     @property

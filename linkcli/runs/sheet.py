@@ -27,7 +27,8 @@ def evaluate(mech, q=None, qdot=None, qddot=None, names=None, method="closed",
     if design.unsolved(mech):       # each trial by the method asked
         mech = design.resolved(mech, evaluate, method, tol)
     names, solve, exprs, solved, limits = route(mech, names)
-    if not (exprs or solved or limits) and mech.elements is None and mech.design is None:
+    if not (exprs or solved or limits) and mech.elements is None and mech.design is None \
+            and mech.clutch is None:
         # the names themselves, by the driver's path (quantities.evaluate's, its plan kept)
         return quantities.plan_for(mech, solve, method, tol).evaluate(mech, q, qdot, qddot)
     result = _evaluate(mech, q, qdot, qddot, solve, method, tol, limits)
@@ -75,6 +76,9 @@ def _kind(mech, name):
 def _evaluate(mech, q, qdot, qddot, names, method, tol, limits) -> Result:
     """``names`` (none an expression) by the path they need (``limits``: one is a limit of
     the motion, or an answer of a machine's whole motion)."""
+    if mech.clutch is not None:     # shafts and a clutch: their transient
+        from linkcli.runs import clutch_sheet
+        return clutch_sheet.evaluate(mech, list(names), Result(mech))
     if mech.elements is None:       # a file with a driver: no vibration modules to import
         run = _machine_run(mech, names)
         if run is not None:             # the motion in time, the periodic regime
@@ -125,6 +129,12 @@ def refuse_driving(mech, q=None, qdot=None, qddot=None, method="closed") -> None
     """A vibration problem (``elements``) is solved at its static equilibrium, by the closed
     form: driver values, rates or another method are refused by name (before a design
     question's trials are solved, and by the commands that draw or sweep one)."""
+    if mech.clutch is not None and (q is not None or qdot is not None or qddot is not None
+                                    or method != "closed"):
+        raise InputError("a clutch problem is solved in time from its shafts' speeds: it takes "
+                         "no driver values, rates or method", file=mech.file,
+                         key="--method" if method != "closed" else None,
+                         hint="drop q, qdot, qddot and --method")
     if mech.elements is None:
         return
     if q is not None or qdot is not None or qddot is not None or method != "closed":

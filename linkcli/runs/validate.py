@@ -68,6 +68,10 @@ def validate_file(path: str, k: int | None = None) -> Validation:
     if errors:
         result.problems, result.exit_code = _lines(errors, digits), 2
         return result
+    if mech.clutch is not None:
+        clutch = mech.clutch.clutch
+        result.summary = f"a clutch between {clutch.driving} and {clutch.driven or 'the frame'}"
+        return result
     from linkcli.kinematics.solvers import figure_cautions, solver_for
     try:
         topology = solver_for(mech).topology

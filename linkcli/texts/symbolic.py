@@ -105,6 +105,10 @@ def formulas(doc, k=None, numbers=(), seconds=None):
     budget = Budget(SECONDS if seconds is None else seconds)
     from linkcli.input.symbols import Symbolic
     mech = build(doc, k)
+    if mech.clutch is not None:
+        raise InputError("a clutch problem (shafts and a clutch) has no linkage to write as "
+                         "formulas", file=mech.file, key="--symbolic",
+                         hint="its closed forms are in docs/machines.md")
     known = set(mech.params) | ({"g"} if mech.dynamics is not None else set())
     unknown = [n for n in numbers if n not in known]
     if unknown:

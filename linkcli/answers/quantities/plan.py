@@ -18,6 +18,7 @@ from linkcli.answers.quantities.geometry import override_unit, signed_angle, vec
     wrap_angle
 from linkcli.answers.quantities.rows import AngleRow, Angles, probe_of, row_of, _Row
 from linkcli.answers.quantities.textbook import Context, textbook_value, TEXTBOOK
+from linkcli.input.efficiency import EFFICIENCY
 from linkcli.errors import InputError, LinkcliError, SolveError
 from linkcli.kinematics.compiled import X as X_PROBE, Y as Y_PROBE, compiled, program_of
 from linkcli.kinematics.solvers import solver_for
@@ -77,7 +78,7 @@ def needed_orders(mech, names):
 def _needs(mech, quantity, order) -> int:
     """The order of the kinematics that ``quantity``'s rate of ``order`` is computed from."""
     kind = quantity.kind
-    if kind in JOINT_FORCES:
+    if kind in JOINT_FORCES or kind in EFFICIENCY:
         return 2 if mech.dynamics is not None else 0
     if kind in MACHINE:
         return 1
@@ -509,6 +510,9 @@ def value_of(mech, name, kin, loads, context=None):
         return gear_value(mech, quantity, kin)
     if quantity.kind in JOINT_FORCES:
         return force_value(quantity, kin, context or Context(mech, None, kin))
+    if quantity.kind in EFFICIENCY:
+        from linkcli.answers.quantities.efficiency import efficiency_value
+        return efficiency_value(quantity, kin, context or Context(mech, None, kin))
     if quantity.kind in MACHINE:
         from linkcli.answers.quantities.machine import reduced_value
         return reduced_value(mech, quantity, kin)

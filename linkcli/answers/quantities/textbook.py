@@ -43,6 +43,8 @@ class Context:
     def __init__(self, mech, solver, kin):
         self.mech, self.solver, self.kin = mech, solver, kin
         self._cache = {}
+        #: notes of the answers themselves (a mechanism that locks itself)
+        self.notes = []
 
     def _once(self, key, make):
         if key not in self._cache:
@@ -60,7 +62,7 @@ class Context:
         """The warnings of what was solved: the joint forces' (a contact that lifts off,
         another answer the friction admits), when they were."""
         reactions = self._cache.get("reactions")
-        return list(reactions.cautions) if reactions is not None else []
+        return (list(reactions.cautions) if reactions is not None else []) + self.notes
 
     def unit(self, j: int = 0):
         """The velocities for a unit rate of driver ``j`` (q' = 1; the others at rest) at the

@@ -209,6 +209,15 @@ def test_a_diametral_pitch_read_per_metre_is_caught(monkeypatch):
     assert found, "planted 'diametral pitch per metre' not caught"
 
 
+def test_a_payout_read_as_an_angle_is_caught(monkeypatch):
+    """A cord's pay-out (value and rates) read in the file's angle units instead of its
+    length units: the spool rewritten in radians turns otherwise."""
+    from linkcli.input import contacts
+    found = caught(lambda: check("docs/examples/spool-payout.yaml", SYSTEMS["si"]),
+                   lambda: monkeypatch.setattr(contacts, "PAYOUT_KIND", "angle"))
+    assert found, "planted 'pay-out in angle units' not caught"
+
+
 def test_a_motor_speed_read_in_rad_per_s_is_caught(monkeypatch):
     """A motor's no-load speed read in rad/s whatever the file's angular rate (1500 rpm taken
     as 1500 rad/s): the press rewritten in deg/s starts up otherwise."""

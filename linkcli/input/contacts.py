@@ -31,6 +31,10 @@ SIDES = {"left": 1, "right": -1}
 FIGURE_TOL = 0.02
 
 
+#: the kind of unit a pay-out's value, rate and accel are written in: a length of cord
+PAYOUT_KIND = "length"
+
+
 def turn_per_payout(cord) -> float:
     """d theta / d s = -side / r: the disc's turn per length of ``cord`` paid out
     (``ContactsSection.payout``)."""
@@ -81,8 +85,8 @@ class ContactsSection:
         disc = bodies[r.disc]
         mark = disc.points[1]
         theta0 = phase(figure[mark] - figure[r.center])
-        s = self.number(spec["value"], path + ("value",), "length", units)
-        rate, accel = (self.driver_rate(spec, path, key, "length", order, units)
+        s = self.number(spec["value"], path + ("value",), PAYOUT_KIND, units)
+        rate, accel = (self.driver_rate(spec, path, key, PAYOUT_KIND, order, units)
                        for order, key in ((1, "rate"), (2, "accel")))
         k = turn_per_payout(r)
         return Driver("angle", r.center, mark, theta0 + k * s, k * rate, k * accel, name,

@@ -234,6 +234,15 @@ def test_a_motor_that_cannot_start_the_machine_is_refused_with_its_numbers():
         answers(mech)
 
 
+def test_a_motor_beyond_its_table_is_refused_not_nan():
+    mech = disc("  motor: {type: motor, on: shaft, speeds: [0, 1000], torques: [50, 10]}",
+                "  w1: {motion: speed, when: {time: 60}}", ["w1"])
+    refusal = (r"at t = [0-9.]+ s, q = [0-9.e+]+ deg: motor motor runs at [0-9.]+ rad/s, "
+               r"outside its table of speeds \(0 to 104.72 rad/s\) \(extend")
+    with pytest.raises(SolveError, match=refusal):
+        answers(mech)
+
+
 def test_a_singular_position_on_the_way_is_refused_with_time_and_position():
     """A crank-slider driven by its slider reaches the crank's dead centre."""
     text = CRANK_SLIDER.format(ax=86.60254, ay=50, by=50 + math.sqrt(350 ** 2 - 86.60254 ** 2),

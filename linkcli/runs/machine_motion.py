@@ -176,6 +176,11 @@ class Equation:
         for i, load in self.turning:
             c = float(v[i])
             if load.kind == "motor":
+                if load.motor.outside(c * w) is not None:
+                    raise _Blocked(t, q, SolveError(
+                        f"motor {load.name} runs at {c * w:.6g} rad/s, outside its table of "
+                        f"speeds ({load.motor.speeds[0]:.6g} to {load.motor.speeds[-1]:.6g} "
+                        "rad/s)"))
                 Q += load.motor.scalar(c * w, q, t) * c
             else:
                 hold += load.value * abs(c)
@@ -417,6 +422,10 @@ def _driver_text(mech, q, digits=6) -> str:
 
 def blocked(mech, exc: _Blocked) -> SolveError:
     detail = getattr(exc.error, "detail", str(exc.error))
+    if detail.startswith("motor "):
+        return SolveError(f"at t = {exc.t:.4g} s, q = {_driver_text(mech, exc.q, 4)}: {detail}",
+                          file=mech.file, hint="extend the motor's table to the speeds the "
+                          "machine reaches")
     return SolveError(f"the motion reaches a position the mechanism cannot pass at t = "
                       f"{exc.t:.4g} s, q = {_driver_text(mech, exc.q, 4)}: {detail}",
                       file=mech.file, hint="a singular position (a dead centre of the "

@@ -430,8 +430,10 @@ class Mechanism:
         unknown = [load for load in self.loads.values() if load.value is None]
         if len(unknown) != len(self.coordinates):
             names = ", ".join(c.name for c in self.coordinates)
-            raise InputError(f"the statics of {len(self.coordinates)} drivers ({names}) needs "
-                             f"one unknown load per driver, found {len(unknown)}",
+            which = ", ".join(load.name for load in unknown) or "none"
+            raise InputError(f"the statics needs one unknown load per driver "
+                             f"({len(self.coordinates)}: {names}), found {len(unknown)} "
+                             f"({which})",
                              file=self.file, key="loads",
                              hint="give one load per driver, usually each driver's, the "
                                   "value 'unknown'")

@@ -23,6 +23,9 @@ from linkcli.errors import InputError
 @click.option("--vary", default=None, metavar="NAME=FROM:TO:STEPS",
               help="Answers against a parameter of 'params' (any file, vibrations too).")
 @click.option("--clutch", is_flag=True, help="A clutch problem: the two shafts' speeds in time.")
+@click.option("--motion", default=None, metavar="0:T:STEPS",
+              help="Machines: the driver's speed and motion in time from the file's start "
+                   "state (T in the file's time unit).")
 @click.option("--regime", is_flag=True, help="Machines: the speed over a cycle of the periodic "
               "regime and the turning-moment diagram with the areas that size the flywheel.")
 @click.option("--y", "names", multiple=True, metavar="NAME",
@@ -30,7 +33,7 @@ from linkcli.errors import InputError
                    "with --frf or --free, coordinates (default: every free one).")
 @K_OPTION
 @PICTURE_OPTION
-def plot(file, sweep, frf, modes, free, vary, regime, clutch, names, k, output):
+def plot(file, sweep, frf, modes, free, vary, motion, regime, clutch, names, k, output):
     """Plot quantities of FILE against the driver, or a vibration problem's response.
 
     \b
@@ -41,13 +44,15 @@ def plot(file, sweep, frf, modes, free, vary, regime, clutch, names, k, output):
       linkcli plot mechanisms/polimi-2001-09-18-vibration.yaml --vary ks=50:150:50 --y w1 -o w.png
       linkcli plot mechanisms/khurmi-16-12-engine-and-machine-torques.yaml --regime -o tm.png
       linkcli plot mechanisms/bhandari-11-14-clutch-energy.yaml --clutch -o speeds.png
+      linkcli plot mechanisms/jee-main-disc-string-revolutions.yaml --motion 0:2:200 -o w.png
     """
     chosen = [flag for flag, value in (("--sweep", sweep), ("--frf", frf), ("--modes", modes),
                                        ("--free", free), ("--vary", vary),
-                                       ("--regime", regime), ("--clutch", clutch)) if value]
+                                       ("--motion", motion), ("--regime", regime),
+                                       ("--clutch", clutch)) if value]
     if len(chosen) != 1:
-        raise InputError("give one of --sweep, --frf, --modes, --free, --vary, --regime, "
-                         "--clutch", key="plot", hint="--sweep FROM:TO:STEPS --y NAME for a "
+        raise InputError("give one of --sweep, --frf, --modes, --free, --vary, --motion, "
+                         "--regime, --clutch", key="plot", hint="--sweep FROM:TO:STEPS --y NAME for a "
                          "mechanism with a driver")
     not_an_input(output, file)
     mech = load(file, k, designed=not vary, clutch=True if clutch else "plot against a driver")
@@ -58,6 +63,10 @@ def plot(file, sweep, frf, modes, free, vary, regime, clutch, names, k, output):
                              hint="--sweep FROM:TO:STEPS --y NAME for a mechanism")
         from linkcli.pictures.clutch import speeds
         speeds(mech, output)
+        return
+    if motion:
+        from linkcli.pictures.motion import motion as draw_motion
+        draw_motion(mech, motion, output)
         return
     if regime:
         from linkcli.pictures.regime import plot_regime

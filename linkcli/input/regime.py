@@ -45,7 +45,7 @@ class RegimeSection:
             if not (mean > 0 and math.isfinite(mean)):
                 raise self.error(where, f"the mean speed is a positive speed, got "
                                  f"{regime['mean_speed']!r}")
-        areas, energy = self.diagram(regime, path + ("regime",), units, mean)
+        areas, energy, scale = self.diagram(regime, path + ("regime",), units, mean)
         fluctuation = None
         if "flywheel" in spec:
             where = path + ("flywheel",)
@@ -62,12 +62,13 @@ class RegimeSection:
             if turns not in (1, 2, 3, 4) or base != "angle":
                 raise self.error(where, "a cycle is 1, 2, 3 or 4 turns of an angle driver, "
                                  f"got {spec['turns_per_cycle']!r}")
-        return RegimeSpec(mean, fluctuation, float(turns), areas, energy)
+        return RegimeSpec(mean, fluctuation, float(turns), areas, energy, scale)
 
     def diagram(self, regime, path, units, mean) -> tuple:
-        """(areas, J per unit area) of a turning-moment diagram given by its areas."""
+        """(areas, J per unit area, (torque, angle) of a unit of the drawing's length) of a
+        turning-moment diagram given by its areas."""
         if "areas" not in regime and "scale" not in regime:
-            return (), 0.0
+            return (), 0.0, ()
         areas = regime.get("areas")
         if not isinstance(areas, list) or len(areas) < 2:
             raise self.error(path + ("areas",), "the areas between the turning moment and "
@@ -89,7 +90,7 @@ class RegimeSection:
             raise self.error(path + ("areas",), f"the areas add up to {total:g}, not 0: over a "
                              "cycle the turning moment's mean is the mean line",
                              hint="check their signs: above the line positive")
-        return values, torque * angle
+        return values, torque * angle, (torque, angle)
 
     def regime_quantity(self, name, value, path) -> Quantity:
         """``{regime: ANSWER}`` or ``{flywheel: approximate | exact}``, with ``unit``."""

@@ -425,8 +425,19 @@ class Mechanism:
         return 0 if name is None else [c.name for c in self.coordinates].index(name)
 
     def unknown_loads(self) -> list:
-        """The unknown loads, one per driver of a mechanism of several drivers."""
-        return [load for load in self.loads.values() if load.value is None]
+        """The unknown loads, one per driver of a mechanism of several drivers; refused
+        when their number is not the drivers' (nothing, or not everything, to balance)."""
+        unknown = [load for load in self.loads.values() if load.value is None]
+        if len(unknown) != len(self.coordinates):
+            names = ", ".join(c.name for c in self.coordinates)
+            which = ", ".join(load.name for load in unknown) or "none"
+            raise InputError(f"the statics needs one unknown load per driver "
+                             f"({len(self.coordinates)}: {names}), found {len(unknown)} "
+                             f"({which})",
+                             file=self.file, key="loads",
+                             hint="give one load per driver, usually each driver's, the "
+                                  "value 'unknown'")
+        return unknown
 
     def load_unit_kind(self, load: Load) -> str:
         """'torque' for a torque (a motor's, a brake's) or the driver load of an angle driver

@@ -34,6 +34,8 @@ class RegimeSpec:
     turns: float = 1.0
     areas: tuple = ()
     area_energy: float = 0.0
+    #: the drawing's scales (SI): the torque and the angle of one unit of its length
+    scale: tuple = ()
 
 
 def regime_dimension(mech, quantity):

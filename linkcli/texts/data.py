@@ -19,6 +19,7 @@ from linkcli.texts.amounts import CLOSE, Writer, number
 from linkcli.texts.bodies import body_lines
 from linkcli.texts.elements import element_lines
 from linkcli.texts.loads import motion_and_load_lines
+from linkcli.texts.machine import regime_lines
 from linkcli.texts.masses import mass_lines
 from linkcli.texts.phrases import WORDS
 from linkcli.texts.quantities import describe
@@ -40,7 +41,7 @@ def data_lines(mech, lang: str = "en", solution=None) -> list[str]:
 
 def _lines(w) -> list:
     lines = []
-    for part in (body_lines, motion_and_load_lines, mass_lines, element_lines):
+    for part in (body_lines, motion_and_load_lines, regime_lines, mass_lines, element_lines):
         lines += part(w)
     return [line for line in lines if line]
 

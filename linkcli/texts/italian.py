@@ -90,6 +90,7 @@ RULES = [(re.compile(pattern), italian) for pattern, italian in (
     (r"\bdriver: slider (\S+), ", r"movente: pattino \1, "),
     (r"\bdriver: (\S+) \(crank\), ", r"movente: \1 (manovella), "),
     (r"\bdriver: ", "movente: "),
+    (r"\(the pay-out of cord (\S+)\)", r"(lo svolgimento della fune \1)"),
     (r"\bangle of ", "angolo di "),
     (r"\blength (?=[A-Za-z_])", "lunghezza "),
     (r"\b([xy]) of ", r"\1 di "),
@@ -138,6 +139,7 @@ RULES = [(re.compile(pattern), italian) for pattern, italian in (
     (r"^  motion of (\S+) alone: ", r"  moto del solo \1: "),
     # power balance (dynamics)
     (r"^Power balance \(inverse dynamics\): ", "Bilancio delle potenze (dinamica inversa): "),
+    (r"\bno unknown load in this file$", "nessun carico incognito in questo file"),
     (r"\bat the file's position: ", "nella posizione del file: "),
     (r"\(the unknown load\)", "(il carico incognito)"),
     (r"\brolling disc (\S+): ", r"disco \1 che rotola: "),

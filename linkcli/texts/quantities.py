@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from linkcli.model.mechanism import split_rate
 from linkcli.texts.amounts import Writer
+from linkcli.texts.machine import describe_machine
 from linkcli.texts.unknowns import unknown_role
 
 
@@ -60,6 +61,8 @@ def _geometry(key_en, key_it):
 
 _DESCRIBE = {
     "design": lambda w, q: unknown_role(w.mech, q.a, w.lang),
+    **{kind: describe_machine for kind in ("motion", "reduced_inertia", "reduced_inertia_slope",
+                                           "reduced_torque", "regime", "flywheel")},
     "angle": _geometry("angle of {a}→{b} from +x", "angolo di {a}→{b} da +x"),
     "length": _geometry("length {a}{b}", "lunghezza {a}{b}"),
     "x": _geometry("x of {a}", "x di {a}"),

@@ -20,12 +20,16 @@ import pytest
 
 import browser
 from linkcli.exports import worked
+from linkcli.input.clutch import is_clutch
 from linkcli.input.source import load_file
 from linkcli.texts.symbolic import formulas
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MECH = os.path.join(ROOT, "mechanisms")
-FILES = sorted(glob.glob(os.path.join(MECH, "*.yaml")))
+#: the files that have a worked solution: the export refuses a clutch problem (shafts and a
+#: clutch, no linkage to work out; docs/errors.md), so it has no page to lay out
+FILES = sorted(p for p in glob.glob(os.path.join(MECH, "*.yaml"))
+               if not is_clutch(load_file(p).data))
 METHOD = {"triad-class3.yaml": "newton"}      # a class-III group: the closed form refuses it
 SYMBOLIC = ("polimi-2001-09-18-vibration.yaml", "padova-2020-02.yaml")
 

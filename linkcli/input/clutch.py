@@ -82,6 +82,7 @@ class ClutchSection:
                          statement=self.block(self.statement, data) or "",
                          quiz=self.block(self.quiz, data, report) or Quiz(),
                          params=dict(self.names), clutch=problem)
+        mech.param_kinds = self.param_kinds()
         self.expression_dimensions(mech)
         self.answer_units(mech)
         if self.errors:

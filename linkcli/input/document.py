@@ -143,8 +143,7 @@ class Parser(Reader, BodiesSection, ContactsSection, LoadsSection, QuantitiesSec
                 if load.kind == "driver":
                     self.error(("loads", load.name), "a 'driver' load needs a driver; with "
                                "coordinates, give forces, torques or axial loads")
-        mech.param_kinds = {name: kinds.pop() for name, kinds in self.uses.items()
-                            if len(kinds) == 1 and name in self.names and name != "k"}
+        mech.param_kinds = self.param_kinds()
         self.expression_dimensions(mech)
         self.answer_units(mech)
         self.find_units(mech)

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 
+from linkcli.model.dimensions import PER_LENGTH
 from linkcli.model.gears import Gear
 from linkcli.model.mechanism import Quantity
 from linkcli.model.units import LENGTH
@@ -96,6 +97,8 @@ class GearsSection:
             module = module_of_pitch(shown, per)    # a length read, as any other
             self.in_range(float(module), path + (key,), units)
             pitch = (key, float(shown), f"1/{length}")
+            if isinstance(spec[key], str):
+                self.note_use(spec[key], PER_LENGTH)
         addendum = module if "addendum" not in spec else \
             self.positive(spec["addendum"], path + ("addendum",), units)
         phi = math.radians(DEFAULT_PRESSURE_ANGLE) if "pressure_angle" not in spec else \

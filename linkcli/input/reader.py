@@ -175,6 +175,13 @@ class Reader:
             if used is not None:
                 self.uses.setdefault(used, set()).add(kind)
 
+    def param_kinds(self) -> dict:
+        """name -> the one unit kind of the places where the parameter is written on its own
+        or as a multiple (note_use); a parameter so written at places of two kinds, or never,
+        has none."""
+        return {name: kinds.pop() for name, kinds in self.uses.items()
+                if len(kinds) == 1 and name in self.names and name != "k"}
+
     def name(self, value, path, pool=None, what="point") -> str:
         if not isinstance(value, str) or not NAME.match(value):
             raise self.error(path, f"expected a {what} name, got {value!r}")

@@ -229,6 +229,11 @@ def driver_rate_kind(base: str, order: int) -> str:
     return next(kind for kind, rate in DRIVER_RATES.items() if rate == (base, order))
 
 
+#: the kind of a diametral pitch (gears: teeth per length unit of pitch diameter), which
+#: ``units:`` does not name: it is one over the file's length unit
+PER_LENGTH = "per_length"
+
+
 def param_unit(mech, name: str) -> tuple:
     """(kind, Dimension, SI factor) of the parameter ``name``: the unit kind it is written in
     where the file uses it on its own as a value of one kind (``k: ks``, ``[L, -2*L]``,
@@ -239,6 +244,8 @@ def param_unit(mech, name: str) -> tuple:
     if kind in DRIVER_RATES:
         base, order = DRIVER_RATES[kind]
         return kind, base_dimension(base) / TIME_DIM ** order, mech.units.display(base, order)[1]
+    if kind == PER_LENGTH:
+        return kind, LENGTH_DIM ** -1, 1.0 / mech.units.factor("length")
     return kind, DIMENSIONS[kind], mech.units.factor(kind)
 
 
@@ -248,4 +255,6 @@ def param_unit_name(mech, name: str) -> str:
     kind = mech.param_kinds.get(name)
     if kind in DRIVER_RATES:
         return mech.units.display(*DRIVER_RATES[kind])[0]
+    if kind == PER_LENGTH:
+        return "1/" + mech.units.names["length"]
     return mech.units.names[kind] if kind else ""

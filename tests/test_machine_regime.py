@@ -125,8 +125,8 @@ def test_units_invariance_catches_a_diagram_angle_read_without_its_unit(monkeypa
     good = RegimeSection.diagram
 
     def planted(self, regime, path, units, mean):
-        areas, energy = good(self, regime, path, units, mean)
-        return areas, energy / units.factor("angle")
+        areas, energy, scale = good(self, regime, path, units, mean)
+        return areas, energy / units.factor("angle"), scale
 
     found = caught(lambda: check("mechanisms/khurmi-16-4-petrol-engine-areas.yaml",
                                  SYSTEMS["si"]),
